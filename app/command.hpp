@@ -1,0 +1,36 @@
+// app/command.hpp — subcommand registry of the `fxraster` CLI.
+//
+// Each app/cmd_<name>.cpp defines one subcommand and registers it with a static
+//   static fxr::app::Registrar reg("name", "one-line help", setup_fn);
+// where setup_fn(CLI::App& sub) adds options and returns the function to run (exit code).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace fxr::app {
+
+using Runner = std::function<int()>;
+using Setup = std::function<Runner(CLI::App&)>;
+
+struct Command {
+  std::string name, help;
+  Setup setup;
+};
+
+std::vector<Command>& registry();
+
+struct Registrar {
+  Registrar(std::string name, std::string help, Setup setup) {
+    registry().push_back({std::move(name), std::move(help), std::move(setup)});
+  }
+};
+
+// Prints "[label] done/total (pct%)" on one line of stderr, rewritten in place; silent when
+// stderr is not a terminal except for every 10 %.
+void progress(const std::string& label, uint64_t done, uint64_t total);
+
+}  // namespace fxr::app
