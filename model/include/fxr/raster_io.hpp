@@ -46,3 +46,71 @@ struct DrawState {
 };
 
 }  // namespace fxr
+
+namespace fxr {
+
+// ---- the record between the geometry stages (1–4) and the raster stages (5–10) --------------
+//
+// A vertex after input conversion, clipping, the reciprocal unit, the perspective divide and
+// viewport snapping. Formats (named in the configuration, see docs/pipeline.md):
+//   x, y: window coordinates in subpixel units (raster.subpixel_bits fraction bits), snapped
+//         with round-to-nearest-even; y up, pixel centres at (i + ½)·2^subpixel_bits.
+//   z:    z_c / w_c ∈ [0, 1] as an unsigned fraction with raster.z_frac_bits bits.
+//   rw:   1/w_c from the reciprocal unit, a normalised FxFloat (recip.out_sig_bits significand).
+//   vw:   v_k · (1/w_c) per varying, a normalised FxFloat (raster.varying_sig_bits), or, in the
+//         affine mode, v_k itself.
+struct SetupVertex {
+  int64_t x = 0, y = 0;
+  uint64_t z = 0;
+  FxFloat rw;
+  FxFloat vw[kMaxVaryings];
+};
+
+struct SetupTriangle {
+  SetupVertex v[3];
+  uint32_t prim = 0;  // index of the input primitive it came from
+};
+
+// One fragment leaving the unit. depth is the D16 / D24 unorm code; var[k] is the
+// perspective-correct varying as a normalised FxFloat (raster.varying_out_sig_bits).
+struct Fragment {
+  int32_t x = 0, y = 0;  // pixel (column, row), row 0 at the bottom
+  uint32_t depth = 0;
+  uint32_t prim = 0;
+  FxFloat var[kMaxVaryings];
+};
+
+// Every input primitive ends in exactly one of: drawn, culled_* or rejected_*
+// (prims_in == prims_drawn + Σ culled + Σ rejected is asserted by tests).
+struct RasterStats {
+  uint64_t prims_in = 0;
+  uint64_t prims_trivial_accept = 0;     // no clipping needed
+  uint64_t prims_clipped = 0;            // went through the clipper (then drawn or culled)
+  uint64_t clip_vertices_created = 0;
+  uint64_t clip_triangles_out = 0;       // triangles emitted by the clipper
+  uint64_t prims_drawn = 0;              // produced at least one setup triangle that was rasterised
+  uint64_t prims_culled_outside = 0;     // trivially rejected or clipped away entirely
+  uint64_t prims_culled_zero_area = 0;   // zero area after snapping (all pieces)
+  uint64_t prims_culled_backface = 0;
+  uint64_t prims_culled_no_samples = 0;  // bounding box ∩ scissor empty
+  uint64_t prims_rejected_nan = 0;       // a NaN in position or varying
+  uint64_t prims_rejected_inf = 0;       // an infinity in position or varying
+  uint64_t prims_rejected_range = 0;     // finite but beyond a format's range (documented)
+  uint64_t fragments_generated = 0;      // covered samples
+  uint64_t fragments_depth_pass = 0;
+  uint64_t fragments_depth_fail = 0;
+
+  template <class V>
+  void visit(V& v) {
+#define FXR_STAT(n) v(#n, n)
+    FXR_STAT(prims_in); FXR_STAT(prims_trivial_accept); FXR_STAT(prims_clipped);
+    FXR_STAT(clip_vertices_created); FXR_STAT(clip_triangles_out); FXR_STAT(prims_drawn);
+    FXR_STAT(prims_culled_outside); FXR_STAT(prims_culled_zero_area); FXR_STAT(prims_culled_backface);
+    FXR_STAT(prims_culled_no_samples); FXR_STAT(prims_rejected_nan); FXR_STAT(prims_rejected_inf);
+    FXR_STAT(prims_rejected_range); FXR_STAT(fragments_generated); FXR_STAT(fragments_depth_pass);
+    FXR_STAT(fragments_depth_fail);
+#undef FXR_STAT
+  }
+};
+
+}  // namespace fxr
