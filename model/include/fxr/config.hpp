@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fxr/param.hpp"
+#include "fxr/raster_config.hpp"
 
 namespace fxr {
 
@@ -21,10 +22,11 @@ inline constexpr int kConfigFormatVersion = 1;
 struct Config {
   // Units: name used in JSON and as the SV prefix, and its config.
   // (Members are added here as units land; for_each_unit lists each once.)
+  RasterConfig raster;
 
   template <class F>
   void for_each_unit(F&& f) {
-    (void)f;
+    f("raster", raster);
   }
   template <class F>
   void for_each_unit(F&& f) const {
