@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fxr/div.hpp"
 #include "fxr/param.hpp"
 #include "fxr/raster_config.hpp"
 
@@ -23,10 +24,12 @@ struct Config {
   // Units: name used in JSON and as the SV prefix, and its config.
   // (Members are added here as units land; for_each_unit lists each once.)
   RasterConfig raster;
+  DivConfig div;
 
   template <class F>
   void for_each_unit(F&& f) {
     f("raster", raster);
+    f("div", div);
   }
   template <class F>
   void for_each_unit(F&& f) const {

@@ -1,0 +1,346 @@
+// The per-pixel divider against exact integer division and GMP rationals.
+#include <gmpxx.h>
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+#include <string>
+
+#include "fxr/config.hpp"
+#include "fxr/div.hpp"
+
+using namespace fxr;
+
+namespace {
+
+// Independent reference, written from the div_sig contract without the model's alignment:
+//   R = (n·2^−(nb−1)) / (d·2^−(db−1)); e = 0 if R ≥ 1 else −1;
+//   sig = RNE(R·2^(qb−1−e)) = RNE(n·2^(db+qb−2−e) / (d·2^(nb−1))), carry-out renormalised.
+// Needs db + qb + nb ≤ 126 (exact in unsigned __int128).
+DivSig ref_div(int nb, int db, int qb, uint64_t n, uint64_t d) {
+  const bool ge1 = ((u128)n << db) >= ((u128)d << nb);
+  const int e = ge1 ? 0 : -1;
+  const u128 num = (u128)n << (db + qb - 2 - e);
+  const u128 den = (u128)d << (nb - 1);
+  u128 q = num / den;
+  const u128 r = num - q * den;
+  if (2 * r > den || (2 * r == den && (q & 1))) ++q;
+  if (q == ((u128)1 << qb)) return {(uint64_t)1 << (qb - 1), e + 1};
+  return {(uint64_t)q, e};
+}
+
+DivConfig shape(DivAlgorithm a, int nb, int db, int qb) {
+  DivConfig c;
+  c.algorithm = a;
+  c.num_bits = nb;
+  c.den_bits = db;
+  c.quot_bits = qb;
+  return c;
+}
+
+// A recip_mul configuration for 12-bit operands: 64×7 seed, 1 NR step, 16-bit iterate.
+DivConfig recip_mul_12bit() {
+  DivConfig c = shape(DivAlgorithm::RecipMul, 12, 12, 12);
+  c.seed_index_bits = 6;
+  c.seed_bits = 7;
+  c.nr_steps = 1;
+  c.nr_frac_bits = 16;
+  return c;
+}
+
+DivConfig recip_mul_default() {
+  DivConfig c;
+  c.algorithm = DivAlgorithm::RecipMul;
+  return c;
+}
+
+std::string show(const DivSig& s) { return std::to_string(s.sig) + "·2^" + std::to_string(s.exp_adj); }
+
+template <class F>
+void exhaustive(const DivConfig& c, F&& fn) {
+  const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
+  for (uint64_t n = nlo; n < 2 * nlo; ++n)
+    for (uint64_t d = dlo; d < 2 * dlo; ++d) {
+      const DivSig got = fn(c, n, d), want = ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d);
+      if (got != want) {
+        FAIL() << "n=" << n << " d=" << d << " got " << show(got) << " want " << show(want);
+        return;
+      }
+    }
+}
+
+// Random operands at the configured widths plus directed ties: for b = m·2^qb, a = (2q+1)·m
+// the exact quotient is q + ½ (a tie); n ± 1 are its neighbours.
+template <class F>
+void random_and_ties(const DivConfig& c, uint64_t count, uint64_t seed, F&& check) {
+  std::mt19937_64 rng(seed);
+  const int nb = c.num_bits, db = c.den_bits, qb = c.quot_bits;
+  const uint64_t nlo = 1ull << (nb - 1), dlo = 1ull << (db - 1);
+  for (uint64_t i = 0; i < count; ++i) check(nlo + rng() % nlo, dlo + rng() % dlo);
+  ASSERT_EQ(nb, db) << "tie construction below assumes equal operand widths";
+  for (int i = 0; i < 100000; ++i) {
+    const uint64_t m = (1ull << (db - 1 - qb)) + rng() % (1ull << (db - 1 - qb));
+    const uint64_t q = (1ull << (qb - 1)) + rng() % (1ull << (qb - 1));
+    u128 a = (u128)(2 * q + 1) * m;
+    if (a >> nb) {
+      if (a & 1) continue;
+      a >>= 1;
+    }
+    for (int delta = -1; delta <= 1; ++delta) check((uint64_t)a + delta, m << qb);
+  }
+}
+
+mpq_class mpq_pow2(long e) {
+  mpq_class r(1);
+  if (e >= 0) r.get_num() <<= e; else r.get_den() <<= -e;
+  r.canonicalize();
+  return r;
+}
+
+mpq_class value_of(const FxFloat& x) {
+  mpq_class v(mpz_class((unsigned long)x.sig));
+  v *= mpq_pow2(x.exp);
+  return x.neg ? mpq_class(-v) : v;
+}
+
+// RNE of |q| > 0 to a `bits`-bit significand (GMP): returns sig and exponent.
+FxFloat mpq_round(const mpq_class& q, int bits) {
+  FxFloat r;
+  r.neg = q < 0;
+  mpq_class m = abs(q);
+  long e = 0;  // find e with m·2^−e ∈ [2^(bits−1), 2^bits)
+  while (m >= mpq_pow2(bits)) { m /= 2; ++e; }
+  while (m < mpq_pow2(bits - 1)) { m *= 2; --e; }
+  mpz_class fl = m.get_num() / m.get_den();
+  const mpq_class frac = m - mpq_class(fl);
+  const int c = cmp(frac, mpq_class(1, 2));
+  if (c > 0 || (c == 0 && mpz_odd_p(fl.get_mpz_t()))) ++fl;
+  if (fl == (mpz_class(1) << bits)) { fl >>= 1; ++e; }
+  r.sig = fl.get_ui();
+  r.exp = (int)e;
+  return r;
+}
+
+}  // namespace
+
+// ---- correct rounding, exhaustive at reduced widths ------------------------------------------
+
+TEST(DivSig, Radix2StepsCorrectlyRoundedForAll12BitOperands) {
+  exhaustive(shape(DivAlgorithm::Radix2, 12, 12, 12), div_sig_radix2_steps);
+}
+
+TEST(DivSig, Radix2StepsCorrectlyRoundedForAllOperandsOfUnequalWidths) {
+  // Wider quotient than the operands, and operands of different widths in both orders.
+  exhaustive(shape(DivAlgorithm::Radix2, 12, 9, 14), div_sig_radix2_steps);
+  exhaustive(shape(DivAlgorithm::Radix2, 9, 12, 7), div_sig_radix2_steps);
+}
+
+TEST(DivSig, RecipMulCorrectlyRoundedForAll12BitOperands) {
+  exhaustive(recip_mul_12bit(), div_sig_recip_mul);
+}
+
+TEST(DivSig, ExactIsBitIdenticalToRadix2StepsForAll12BitOperands) {
+  for (const DivConfig& c : {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14)}) {
+    const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
+    for (uint64_t n = nlo; n < 2 * nlo; ++n)
+      for (uint64_t d = dlo; d < 2 * dlo; ++d)
+        ASSERT_EQ(div_sig_exact(c, n, d), div_sig_radix2_steps(c, n, d)) << "n=" << n << " d=" << d;
+  }
+}
+
+// ---- default widths: 10^7 random plus directed ties ------------------------------------------
+
+TEST(DivSig, ExactIsBitIdenticalToRadix2StepsOnTenMillionAtDefaultWidths) {
+  const DivConfig c;
+  uint64_t mismatches = 0;
+  random_and_ties(c, 10'000'000, 11, [&](uint64_t n, uint64_t d) {
+    if (div_sig_exact(c, n, d) != div_sig_radix2_steps(c, n, d) && ++mismatches <= 5)
+      ADD_FAILURE() << "n=" << n << " d=" << d;
+  });
+  EXPECT_EQ(mismatches, 0u);
+}
+
+TEST(DivSig, EveryAlgorithmCorrectlyRoundedOnTenMillionAtDefaultWidths) {
+  DivConfig radix2;
+  radix2.algorithm = DivAlgorithm::Radix2;
+  for (const DivConfig& c : {radix2, recip_mul_default()}) {
+    uint64_t mismatches = 0, checked = 0;
+    random_and_ties(c, 10'000'000, 12, [&](uint64_t n, uint64_t d) {
+      ++checked;
+      const DivSig got = div_sig(c, n, d), want = ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d);
+      if (got != want && ++mismatches <= 5)
+        ADD_FAILURE() << div_label(c) << " n=" << n << " d=" << d << " got " << show(got) << " want " << show(want);
+    });
+    EXPECT_EQ(mismatches, 0u) << div_label(c) << " checked=" << checked;
+  }
+}
+
+TEST(DivSig, ReferenceAgreesWithGmpRationals) {
+  // The integer reference above, checked against GMP on the contract's formula itself.
+  std::mt19937_64 rng(13);
+  const int nb = 32, db = 32, qb = 24;
+  for (int i = 0; i < 20000; ++i) {
+    const uint64_t n = (1ull << 31) | (rng() >> 33), d = (1ull << 31) | (rng() >> 33);
+    const mpq_class ratio = mpq_class(mpz_class((unsigned long)n), mpz_class((unsigned long)d));
+    const FxFloat r = mpq_round(ratio, qb);  // ratio ≈ r.sig·2^r.exp
+    const DivSig s = ref_div(nb, db, qb, n, d);
+    ASSERT_EQ(s.sig, r.sig) << n << "/" << d;
+    ASSERT_EQ(s.exp_adj, r.exp + (qb - 1)) << n << "/" << d;
+  }
+}
+
+TEST(DivSig, RoundingCarryOutRenormalises) {
+  // n = 2^32 − 1, d = 2^31: R = 2 − 2^−31 rounds to 2.0 at 24 bits → sig 2^23, exp_adj +1.
+  const DivConfig c;
+  const uint64_t n = (1ull << 32) - 1, d = 1ull << 31;
+  for (auto fn : {div_sig_exact, div_sig_radix2_steps, div_sig_recip_mul}) {
+    const DivSig s = fn(c, n, d);
+    EXPECT_EQ(s.sig, 1ull << 23);
+    EXPECT_EQ(s.exp_adj, 1);
+  }
+}
+
+// ---- special cases ----------------------------------------------------------------------------
+
+TEST(DivSig, ZeroDivisorSaturatesAndZeroNumeratorGivesZero) {
+  for (DivAlgorithm a : {DivAlgorithm::Radix2, DivAlgorithm::RecipMul}) {
+    DivConfig c;
+    c.algorithm = a;
+    EXPECT_EQ(div_sig(c, 1ull << 31, 0), (DivSig{(1ull << 24) - 1, 0}));
+    EXPECT_EQ(div_sig(c, 0, 0), (DivSig{(1ull << 24) - 1, 0}));
+    EXPECT_EQ(div_sig(c, 0, 1ull << 31), (DivSig{0, 0}));
+  }
+}
+
+TEST(DivSig, RejectsOperandsWithoutTheirMsbSet) {
+  const DivConfig c;
+  EXPECT_THROW(div_sig(c, 1ull << 30, 1ull << 31), std::invalid_argument);
+  EXPECT_THROW(div_sig(c, 1ull << 31, 1ull << 32), std::invalid_argument);
+  EXPECT_THROW(div_sig_radix2_steps(c, 3, 1ull << 31), std::invalid_argument);
+}
+
+TEST(Divide, MatchesGmpQuotientWithSignsAndExponents) {
+  const DivConfig c;
+  std::mt19937_64 rng(14);
+  for (int i = 0; i < 30000; ++i) {
+    FxFloat num, den;
+    // float32-like significands (24 bits, exact at 32) and random exponents and signs.
+    num.sig = (1ull << 23) | (rng() >> 41);
+    den.sig = (rng() >> 40) | 1;  // also unnormalised (narrow) significands: widened exactly
+    num.exp = (int)(rng() % 200) - 100;
+    den.exp = (int)(rng() % 200) - 100;
+    num.neg = rng() & 1;
+    den.neg = rng() & 1;
+    const DivResult r = divide(c, num, den);
+    ASSERT_FALSE(r.div_by_zero);
+    const FxFloat want = mpq_round(value_of(num) / value_of(den), c.quot_bits);
+    ASSERT_EQ(r.value.neg, want.neg);
+    ASSERT_EQ(r.value.sig, want.sig);
+    ASSERT_EQ(r.value.exp, want.exp);
+  }
+}
+
+TEST(Divide, WideOperandsAreRoundedToNearestEvenFirst) {
+  // 40-bit operands: documented pre-rounding to 32 bits (RNE), then a correctly rounded divide.
+  const DivConfig c;
+  std::mt19937_64 rng(15);
+  for (int i = 0; i < 20000; ++i) {
+    FxFloat num, den;
+    num.sig = (1ull << 39) | (rng() >> 25);
+    den.sig = (1ull << 39) | (rng() >> 25);
+    num.exp = -7;
+    den.exp = 3;
+    const FxFloat nr = mpq_round(value_of(num), c.num_bits), dr = mpq_round(value_of(den), c.den_bits);
+    const FxFloat want = mpq_round(value_of(nr) / value_of(dr), c.quot_bits);
+    const DivResult r = divide(c, num, den);
+    ASSERT_EQ(r.value.sig, want.sig);
+    ASSERT_EQ(r.value.exp, want.exp);
+  }
+}
+
+TEST(Divide, ZeroCases) {
+  const DivConfig c;
+  FxFloat one{false, 1, 0}, zero{true, 0, 0}, three{false, 3, 5};
+  DivResult r = divide(c, zero, one);
+  EXPECT_FALSE(r.div_by_zero);
+  EXPECT_TRUE(r.value.is_zero());
+  EXPECT_TRUE(r.value.neg);  // sign kept: −0 / +1 = −0
+  r = divide(c, three, zero);
+  EXPECT_TRUE(r.div_by_zero);
+  // Saturated at the numerator's binade: 3·2^5 = 96 ∈ [64, 128) → (2^24 − 1)·2^(6 − 23).
+  EXPECT_EQ(r.value.sig, (1ull << 24) - 1);
+  EXPECT_EQ(r.value.exp, 6 - 23);
+  EXPECT_TRUE(r.value.neg);  // +3 / −0
+  r = divide(c, FxFloat{}, FxFloat{});
+  EXPECT_TRUE(r.div_by_zero);
+  EXPECT_TRUE(r.value.is_zero());
+}
+
+// ---- seed table, measurement, configuration ----------------------------------------------------
+
+TEST(DivSeedTable, EntriesAreRoundedMidpointReciprocals) {
+  for (auto [si, sb] : {std::pair{8, 8}, std::pair{5, 7}, std::pair{12, 14}, std::pair{4, 6}}) {
+    DivConfig c;
+    c.seed_index_bits = si;
+    c.seed_bits = sb;
+    const auto t = div_seed_table(c);
+    ASSERT_EQ(t.size(), size_t(1) << si);
+    for (size_t i = 0; i < t.size(); ++i) {
+      const mpq_class mid = 1 + mpq_class((long)(2 * i + 1), 2) * mpq_pow2(-si);
+      mpq_class y = mpq_pow2(sb + 1) / mid;  // in (2^sb, 2^(sb+1))
+      mpz_class fl = y.get_num() / y.get_den();
+      const int cm = cmp(y - mpq_class(fl), mpq_class(1, 2));
+      if (cm > 0 || (cm == 0 && mpz_odd_p(fl.get_mpz_t()))) ++fl;
+      mpz_class e = fl - (mpz_class(1) << sb);
+      if (e >= (mpz_class(1) << sb)) e = (mpz_class(1) << sb) - 1;  // documented clamp
+      ASSERT_EQ(t[i], e.get_ui()) << "si=" << si << " sb=" << sb << " i=" << i;
+    }
+  }
+}
+
+TEST(DivMeasure, DefaultsAreCorrectlyRoundedAndCoarseSeedsAreNot) {
+  DivConfig c;
+  for (DivAlgorithm a : {DivAlgorithm::Radix2, DivAlgorithm::RecipMul}) {
+    c.algorithm = a;
+    const DivErrorStats s = div_measure(c, 100000, 3);
+    EXPECT_TRUE(s.correctly_rounded) << div_label(c);
+    EXPECT_LE(s.max_err_ulp, 0.5) << div_label(c);
+    EXPECT_GT(s.count, 100000u);
+  }
+  // 16×4 seed, one NR step: ≈ 2^−10 relative error, far beyond the ±1 ulp correction.
+  c.algorithm = DivAlgorithm::RecipMul;
+  c.seed_index_bits = 4;
+  c.seed_bits = 4;
+  c.nr_steps = 1;
+  const DivErrorStats s = div_measure(c, 100000, 3);
+  EXPECT_FALSE(s.correctly_rounded);
+  EXPECT_GT(s.max_err_ulp, 1.0);
+}
+
+TEST(DivConfig, EveryParameterIsListedOnceAndRoundTripsThroughJson) {
+  DivConfig c;
+  c.algorithm = DivAlgorithm::RecipMul;
+  c.nr_steps = 3;
+  c.schedule = DivSchedule::Iterative;
+  const auto rows = param_rows(c);
+  std::set<std::string> names;
+  for (const auto& r : rows) EXPECT_TRUE(names.insert(r.name).second) << r.name;
+  DivConfig d;
+  from_json_params(to_json_params(c), d, "test");
+  EXPECT_EQ(to_json_params(d), to_json_params(c));
+  nlohmann::json bad = to_json_params(c);
+  bad["quot_bits"] = 99;
+  EXPECT_THROW(from_json_params(bad, d, "test"), ConfigError);
+}
+
+TEST(DivConfig, SweepConfigurationsAreValidAndMeasurable) {
+  for (const DivConfig& c : div_sweep_configs()) {
+    DivConfig d;
+    from_json_params(to_json_params(c), d, div_label(c));  // within every range
+    const DivCost k = div_cost(c);
+    EXPECT_GE(k.latency, 2) << div_label(c);
+    EXPECT_GE(k.ii, 1) << div_label(c);
+    const DivErrorStats s = div_measure(c, 2000, 4);
+    EXPECT_LT(s.max_err_ulp, 1e6) << div_label(c);
+  }
+}
