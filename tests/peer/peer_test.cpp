@@ -4,6 +4,7 @@
 //
 // If no OSMesa context can be created the tests FAIL (PeerError), unless FXR_NO_PEER is set,
 // in which case they are skipped with a message.
+#include <gmpxx.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +18,7 @@
 
 #include "fxr/float_raster.hpp"
 #include "fxr/peer_osmesa.hpp"
+#include "fxr/peer_scenes.hpp"
 
 using namespace fxr;
 using namespace fxr::peer;
@@ -317,5 +319,240 @@ TEST(FloatRaster, CoverageIsExactForIntegerPixelVertices) {
     uint64_t n = 0;
     for (uint32_t c : exp) n += c;
     EXPECT_EQ(f.fragments_generated, n) << s.name;
+  }
+}
+
+// ---- perspective scenes ----------------------------------------------------------------------
+
+namespace {
+
+// Round-to-nearest-even of a rational, exactly.
+int64_t rne(const mpq_class& q) {
+  mpz_class fl, rem;
+  mpz_fdiv_qr(fl.get_mpz_t(), rem.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
+  const int c = cmp(mpz_class(2 * rem), q.get_den());
+  if (c > 0 || (c == 0 && mpz_odd_p(fl.get_mpz_t()))) fl += 1;
+  return fl.get_si();
+}
+
+// Exact window coordinate of a float32 clip coordinate, snapped to 1/256 px by RNE:
+// RNE(256 · (v0 + (c / w + 1) · size / 2)), all in rationals.
+int64_t exact_snap(float c, float w, int v0, int size) {
+  const mpq_class q = mpq_class(kSub) * (mpq_class(v0) + (mpq_class(c) / mpq_class(w) + 1) * mpq_class(size, 2));
+  return rne(q);
+}
+
+// True when the triangle needs no clipping against w > 0 and 0 ≤ z ≤ w (x, y are left to the
+// guard band: the exact coverage is that of the whole triangle, cut to the image).
+bool inside_depth_range(const ClipTriangle& t) {
+  for (const ClipVertex& v : t.v)
+    if (!(v.pos[3] > 0) || v.pos[2] < 0 || v.pos[2] > v.pos[3]) return false;
+  return true;
+}
+
+GridTri exact_snapped(const ClipTriangle& t, const DrawState& st) {
+  GridTri g;
+  for (int i = 0; i < 3; ++i) {
+    g.x[i] = exact_snap(t.v[i].pos[0], t.v[i].pos[3], st.viewport_x, st.viewport_w);
+    g.y[i] = exact_snap(t.v[i].pos[1], t.v[i].pos[3], st.viewport_y, st.viewport_h);
+  }
+  return g;
+}
+
+// Perspective-correct varying k of triangle t at the centre of pixel (px, py), in double from
+// window positions (snapped to the 1/256 grid when `snapped`, else unsnapped). The double
+// rounding error (~1e-13 relative) is negligible at float32 scale.
+double ref_varying(const ClipTriangle& t, const DrawState& st, int px, int py, int k, bool snapped) {
+  double X[3], Y[3], rw[3];
+  for (int i = 0; i < 3; ++i) {
+    const ClipVertex& v = t.v[i];
+    rw[i] = 1.0 / (double)v.pos[3];
+    X[i] = st.viewport_x + ((double)v.pos[0] * rw[i] + 1) * st.viewport_w / 2;
+    Y[i] = st.viewport_y + ((double)v.pos[1] * rw[i] + 1) * st.viewport_h / 2;
+    if (snapped) {
+      X[i] = std::nearbyint(X[i] * kSub) / kSub;
+      Y[i] = std::nearbyint(Y[i] * kSub) / kSub;
+    }
+  }
+  const double cx = px + 0.5, cy = py + 0.5;
+  double l[3], num = 0, den = 0;
+  for (int i = 0; i < 3; ++i) {
+    const int a = (i + 1) % 3, b = (i + 2) % 3;
+    l[i] = (X[b] - X[a]) * (cy - Y[a]) - (Y[b] - Y[a]) * (cx - X[a]);
+  }
+  for (int i = 0; i < 3; ++i) {
+    num += l[i] * (double)t.v[i].var[k] * rw[i];
+    den += l[i] * rw[i];
+  }
+  return num / den;
+}
+
+// Distance in float32 ulps (ordered bit patterns).
+int64_t ulp_distance(float a, float b) {
+  auto ord = [](float f) {
+    const int32_t i = (int32_t)f32_bits(f);
+    return i < 0 ? (int64_t)INT32_MIN - i : (int64_t)i;
+  };
+  return std::llabs(ord(a) - ord(b));
+}
+
+struct DiffStats {
+  uint64_t n = 0;
+  double max_abs = 0, sum_abs = 0;
+  int64_t max_ulps = 0;
+  std::vector<int64_t> ulps;
+  void add(double got, double exp) {
+    const double d = std::fabs(got - exp);
+    ++n;
+    max_abs = std::max(max_abs, d);
+    sum_abs += d;
+    const int64_t u = ulp_distance((float)got, (float)exp);
+    max_ulps = std::max(max_ulps, u);
+    ulps.push_back(u);
+  }
+  int64_t percentile_ulps(double p) {
+    if (ulps.empty()) return 0;
+    std::sort(ulps.begin(), ulps.end());
+    return ulps[std::min(ulps.size() - 1, (size_t)(p * (double)ulps.size()))];
+  }
+  std::string str() {
+    char b[256];
+    std::snprintf(b, sizeof b, "n=%llu max_abs=%.3g mean_abs=%.3g ulps: p50=%lld p99=%lld max=%lld",
+                  (unsigned long long)n, max_abs, n ? sum_abs / (double)n : 0.0, (long long)percentile_ulps(0.5),
+                  (long long)percentile_ulps(0.99), (long long)max_ulps);
+    return b;
+  }
+};
+
+std::vector<PeerScene> perspective_scenes() {
+  std::vector<PeerScene> s;
+  s.push_back(grazing_plane_scene(512, 2));
+  s.push_back(bunny_scene(512, 2));
+  return s;
+}
+
+// ANCHORS ("Measured here"): llvmpipe's perspective-correct varyings are off the exact value by
+// up to 1.1e-3 for u, v in 0..16 across a grazing plane. Scenes here keep u, v in [0, 16].
+constexpr double kLlvmpipeVaryingError = 1.1e-3;
+constexpr float kUvMax = 16.0f;
+
+// Perspective triangles whose vertices still land exactly on the 1/256 grid: w is a power of
+// two (1 … 16) and x_c = x_ndc · w, y_c = y_ndc · w, z_c = z_ndc · w are exact, and so is the
+// divide. Snapping then moves nothing, so exact references need no snapping model, and coverage
+// must agree bit for bit. u, v ∈ [0, 16] random (seeded).
+struct GridPerspectiveScene {
+  DrawState st;
+  std::vector<GridTri> grid;
+  std::vector<ClipTriangle> tris;
+};
+
+GridPerspectiveScene grid_perspective_scene() {
+  GridPerspectiveScene s;
+  s.st = ortho_state(0, 0, 256, 256);
+  s.st.num_varyings = 2;
+  std::mt19937_64 rng(0x5eed0003);
+  const int64_t span = 256 * kSub;
+  std::uniform_real_distribution<float> uv(0.0f, kUvMax);
+  for (int t = 0; t < 400; ++t) {
+    GridTri g;
+    ClipTriangle c;
+    const int64_t size = t % 4 == 0 ? span : span / 8;
+    const int64_t bx = (int64_t)(rng() % span), by = (int64_t)(rng() % span);
+    for (int i = 0; i < 3; ++i) {
+      g.x[i] = std::clamp<int64_t>(bx + (int64_t)(rng() % size) - size / 2, 0, span);
+      g.y[i] = std::clamp<int64_t>(by + (int64_t)(rng() % size) - size / 2, 0, span);
+    }
+    const ClipTriangle o = to_clip(g, s.st);  // w = 1 clip coordinates of the grid points
+    for (int i = 0; i < 3; ++i) {
+      const float w = (float)(1 << (rng() % 5));
+      c.v[i].pos[0] = o.v[i].pos[0] * w;
+      c.v[i].pos[1] = o.v[i].pos[1] * w;
+      c.v[i].pos[2] = (float)(rng() % 1024) / 1024.0f * w;
+      c.v[i].pos[3] = w;
+      c.v[i].var[0] = uv(rng);
+      c.v[i].var[1] = uv(rng);
+    }
+    s.grid.push_back(g);
+    s.tris.push_back(c);
+  }
+  return s;
+}
+
+size_t count_differences(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b, size_t* any) {
+  size_t diff = 0;
+  *any = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    *any += a[i] || b[i];
+    diff += a[i] != b[i];
+  }
+  return diff;
+}
+
+}  // namespace
+
+
+TEST(PeerPerspective, GridVerticesWithPowerOfTwoWCoverExactly) {
+  FXR_PEER_OR_SKIP(peer, true);
+  const GridPerspectiveScene s = grid_perspective_scene();
+  const PeerImage img = peer->render(s.st, s.tris);
+  size_t n = 0;
+  const std::string msg =
+      count_mismatches(img.count, exact_count(s.grid, img.width, img.height, FillRule::TopLeft), img.width, &n);
+  std::printf("grid_perspective: tris=%zu fragments=%llu peer-vs-exact differences=%zu\n", s.tris.size(),
+              (unsigned long long)img.fragments(), n);
+  EXPECT_EQ(n, 0u) << msg;
+}
+
+// llvmpipe interpolates from the unsnapped float positions (its error against the exact value
+// from unsnapped positions is ~10× smaller than against the exact value from snapped ones).
+// ANCHORS' bound (1.1e-3 for u, v in 0..16) was measured on a grazing plane: asserted there
+// only; the other scenes are reported (random triangles with w ratios up to 16 exceed it).
+TEST(PeerPerspective, GrazingPlaneVaryingsWithinAnchoredLlvmpipeErrorOfExact) {
+  FXR_PEER_OR_SKIP(peer, true);
+  std::vector<PeerScene> scenes = perspective_scenes();
+  GridPerspectiveScene g = grid_perspective_scene();
+  scenes.push_back({"grid_perspective", "", g.st, g.tris});
+  for (PeerScene& s : scenes) {
+    s.st.depth_test = true;
+    const PeerImage img = peer->render(s.st, s.tris);
+    DiffStats unsnapped[2], snapped[2];
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const int32_t p = img.prim[img.index(x, y)];
+        if (p < 0) continue;
+        for (int k = 0; k < 2; ++k) {
+          unsnapped[k].add(img.varying(x, y, k), ref_varying(s.tris[p], s.st, x, y, k, false));
+          snapped[k].add(img.varying(x, y, k), ref_varying(s.tris[p], s.st, x, y, k, true));
+        }
+      }
+    for (int k = 0; k < 2; ++k) {
+      std::printf("%-16s v%d peer vs exact(unsnapped positions): %s\n", s.name.c_str(), k, unsnapped[k].str().c_str());
+      std::printf("%-16s v%d peer vs exact(snapped positions):   %s\n", s.name.c_str(), k, snapped[k].str().c_str());
+      EXPECT_GT(unsnapped[k].n, 0u);
+      if (s.name == "grazing_plane") EXPECT_LE(unsnapped[k].max_abs, kLlvmpipeVaryingError) << s.name << " v" << k;
+    }
+  }
+}
+
+// Clip-space scenes off the grid: llvmpipe snaps with a float32 divide and viewport transform,
+// exact snapping is rational round-to-nearest-even (ANCHORS: they differ for about 3 % of
+// vertices at 4096 px), so only near-total agreement is certain. Printed: the counts.
+TEST(PeerPerspective, CoverageAgreesWithExactSnappedCoverage) {
+  FXR_PEER_OR_SKIP(peer, true);
+  for (const PeerScene& s : perspective_scenes()) {
+    DrawState cst = s.st;
+    cst.depth_test = false;
+    const PeerImage cov = peer->render(cst, s.tris);
+    std::vector<GridTri> g;
+    for (const ClipTriangle& t : s.tris) {
+      ASSERT_TRUE(inside_depth_range(t)) << s.name << ": scene needs near/far clipping";
+      g.push_back(exact_snapped(t, s.st));
+    }
+    size_t any = 0;
+    const size_t diff = count_differences(cov.count, exact_count(g, cov.width, cov.height, FillRule::TopLeft), &any);
+    const double agree = 100.0 * (1.0 - (double)diff / (double)any);
+    std::printf("%-16s tris=%zu pixels=%zu peer-vs-exact count differences=%zu agreement=%.4f%%\n", s.name.c_str(),
+                s.tris.size(), any, diff, agree);
+    EXPECT_GT(agree, 99.9) << s.name;
   }
 }

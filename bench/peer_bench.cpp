@@ -1,0 +1,144 @@
+// Model speed against two baselines measured in the same run (issue #3, SPEC §9):
+//   - float:    the plain float32 rasterizer (fxr_peer, fxr/float_raster.hpp), one thread;
+//   - llvmpipe: Mesa through OSMesa with LP_NUM_THREADS=0 (rasterises in the calling thread),
+//               context creation, shader compilation and vertex upload excluded; each iteration
+//               is clear + draw + glFinish;
+//   - model:    fxr::run_raster_unit on the default configuration.
+// Scenes at 1024 × 1024: the bunny (69,666 triangles, setup-bound) and a grazing textured
+// plane (2 triangles, fill-bound), with 0 and 2 varyings, depth test on (less).
+// items/s = fragments/s, fragments = covered samples before the depth test, each renderer
+// counting its own. The summary at the end prints the ratios; nothing passes or fails on time.
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fxr/float_raster.hpp"
+#include "fxr/peer_osmesa.hpp"
+#include "fxr/peer_scenes.hpp"
+#include "fxr/raster_unit.hpp"
+
+using namespace fxr;
+using namespace fxr::peer;
+
+namespace {
+
+constexpr int kSize = 1024;
+enum SceneId { kBunny = 0, kPlane = 1 };
+const char* const kSceneNames[] = {"bunny", "plane"};
+
+const PeerScene& scene(int id, int nv) {
+  static std::map<int, std::unique_ptr<PeerScene>> cache;
+  auto& p = cache[id * 64 + nv];
+  if (!p) {
+    p.reset(new PeerScene(id == kBunny ? bunny_scene(kSize, nv) : grazing_plane_scene(kSize, nv)));
+    if (!p->note.empty()) std::fprintf(stderr, "NOTE: %s\n", p->note.c_str());
+  }
+  return *p;
+}
+
+// The peer is created once, before any timing (LP_NUM_THREADS=0 is set by its constructor,
+// before the first context of the process).
+OsmesaPeer* the_peer() {
+  static std::unique_ptr<OsmesaPeer> p;
+  static std::string error;
+  if (!p && error.empty()) {
+    try {
+      PeerOptions opt;
+      opt.lp_num_threads = 0;
+      p.reset(new OsmesaPeer(opt));
+    } catch (const PeerError& e) {
+      error = e.what();
+    }
+  }
+  return p.get();
+}
+
+void BM_Float(benchmark::State& state) {
+  const PeerScene& s = scene((int)state.range(0), (int)state.range(1));
+  FloatFrame f;
+  for (auto _ : state) {
+    float_raster(s.st, s.tris, f);
+    benchmark::DoNotOptimize(f.depth.data());
+  }
+  state.SetItemsProcessed((int64_t)state.iterations() * (int64_t)f.fragments_generated);
+  state.counters["fragments"] = (double)f.fragments_generated;
+}
+
+void BM_Llvmpipe(benchmark::State& state) {
+  OsmesaPeer* p = the_peer();
+  if (!p) {
+    state.SkipWithError("no OSMesa/llvmpipe context");
+    return;
+  }
+  const PeerScene& s = scene((int)state.range(0), (int)state.range(1));
+  // Fragment count: covered samples before the depth test (depth test off, count attachment).
+  DrawState count_st = s.st;
+  count_st.depth_test = false;
+  const uint64_t frags = p->render(count_st, s.tris).fragments();
+  p->prepare(s.st, s.tris);
+  p->draw();  // warm-up: shader variants are compiled on first use
+  for (auto _ : state) p->draw();
+  state.SetItemsProcessed((int64_t)state.iterations() * (int64_t)frags);
+  state.counters["fragments"] = (double)frags;
+}
+
+void scene_args(benchmark::internal::Benchmark* b) {
+  for (int id : {kBunny, kPlane})
+    for (int nv : {0, 2}) b->Args({id, nv});
+  b->ArgNames({"scene", "varyings"})->Unit(benchmark::kMillisecond);
+}
+
+BENCHMARK(BM_Float)->Apply(scene_args);
+BENCHMARK(BM_Llvmpipe)->Apply(scene_args);
+
+// Collects items/s per (renderer, scene, varyings) and prints the ratios at the end.
+class RatioReporter : public benchmark::ConsoleReporter {
+ public:
+  std::map<std::string, std::map<std::string, double>> rate;  // [scene/varyings][renderer]
+
+  void ReportRuns(const std::vector<Run>& runs) override {
+    benchmark::ConsoleReporter::ReportRuns(runs);
+    for (const Run& r : runs) {
+      if (r.error_occurred || r.run_type != Run::RT_Iteration) continue;
+      auto it = r.counters.find("items_per_second");
+      if (it == r.counters.end()) continue;
+      // Name: BM_<renderer>/scene:<id>/varyings:<n>
+      const std::string name = r.benchmark_name();
+      const size_t slash = name.find('/');
+      const std::string renderer = name.substr(3, slash - 3);
+      int id = 0, nv = 0;
+      std::sscanf(name.c_str() + slash, "/scene:%d/varyings:%d", &id, &nv);
+      rate[std::string(kSceneNames[id]) + " v" + std::to_string(nv)][renderer] = it->second.value;
+    }
+  }
+
+  void print_summary() const {
+    std::printf("\nfragments/s at %dx%d (Mfrag/s) and ratios, measured in this run:\n", kSize, kSize);
+    std::printf("%-10s %10s %10s %10s %12s %14s %15s\n", "scene", "model", "float", "llvmpipe", "model/float",
+                "model/llvmpipe", "float/llvmpipe");
+    for (const auto& [key, m] : rate) {
+      const auto get = [&](const char* k) { auto it = m.find(k); return it == m.end() ? 0.0 : it->second; };
+      const double mo = get("Model"), fl = get("Float"), lp = get("Llvmpipe");
+      const auto ratio = [](double a, double b) { return b > 0 && a > 0 ? a / b : 0.0; };
+      std::printf("%-10s %10.2f %10.2f %10.2f %12.3f %14.3f %15.3f\n", key.c_str(), mo / 1e6, fl / 1e6, lp / 1e6,
+                  ratio(mo, fl), ratio(mo, lp), ratio(fl, lp));
+    }
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  if (!the_peer()) std::fprintf(stderr, "WARNING: no OSMesa/llvmpipe context: llvmpipe rows are skipped\n");
+  RatioReporter rep;
+  benchmark::RunSpecifiedBenchmarks(&rep);
+  rep.print_summary();
+  benchmark::Shutdown();
+  return 0;
+}
