@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "fxr/div.hpp"
+
 namespace fxr {
 
 // ---- layout ----------------------------------------------------------------------------------
@@ -470,6 +472,125 @@ uint64_t recheck_vectors(const VecFile& f, std::vector<std::string>* first, size
 // One section per unit: its fields (named as the RTL ports without _i / _o), the model call,
 // and its directed / random / exhaustive cases.
 
-std::vector<VectorUnitInfo> builtin_vector_units() { return {}; }
+namespace {
+
+// Raw-bit helpers for the generators (platform-independent: no std distributions).
+inline uint64_t bit(int i) { return 1ull << i; }
+// A significand of `bits` bits with its msb set, the rest from rng.
+inline uint64_t random_sig(std::mt19937_64& rng, int bits) { return bit(bits - 1) | (rng() & vec_mask(bits - 1)); }
+// Integer in [lo, hi] (hi − lo < 2^32; the modulo bias is < 2^-32 and documented as such).
+inline int64_t random_in(std::mt19937_64& rng, int64_t lo, int64_t hi) {
+  return lo + (int64_t)((rng() >> 32) % (uint64_t)(hi - lo + 1));
+}
+// Largest exhaustive sweep a unit offers (lines): 2^24 lines are about 0.4 GB of hex.
+constexpr uint64_t kMaxExhaustive = 1ull << 24;
+
+nlohmann::json unit_config_json(const char* unit, const nlohmann::json& params) {
+  return {{"version", kConfigFormatVersion}, {unit, params}};
+}
+
+// ---- div: the per-pixel significand divider (fxr/div.hpp, rtl/fxr_div.sv) -------------------
+// Fields: in_num [num_bits], in_den [den_bits] (significands with the msb set, or 0);
+// out_sig [quot_bits], out_exp_adj (signed, {−1, 0, +1}), out_dbz. Model: div_sig.
+
+// out_exp_adj ∈ {−1, 0, +1}: two's complement needs 2 bits.
+constexpr int kDivExpAdjBits = 2;
+
+class DivVectors : public VectorModel {
+ public:
+  explicit DivVectors(const Config& c) : c_(c.div) {
+    nb_ = c_.num_bits;
+    db_ = c_.den_bits;
+    qb_ = c_.quot_bits;
+    const std::string nb = std::to_string(nb_), db = std::to_string(db_), qb = std::to_string(qb_);
+    lay_ = VecLayout({
+        {"in_num", VecDir::In, nb_, false, "unsigned numerator significand, " + nb + " bits, msb set (or 0)"},
+        {"in_den", VecDir::In, db_, false, "unsigned denominator significand, " + db + " bits, msb set (or 0 = divide by zero)"},
+        {"out_sig", VecDir::Out, qb_, false,
+         "unsigned quotient significand, " + qb + " bits, msb set, RNE; 0 when num = 0; all ones when den = 0"},
+        {"out_exp_adj", VecDir::Out, kDivExpAdjBits, true,
+         "signed exponent adjustment: quotient = sig·2^-(" + qb + "-1)·2^exp_adj, exp_adj in {-1, 0, +1}"},
+        {"out_dbz", VecDir::Out, 1, false, "1 when den = 0"},
+    });
+  }
+  const VecLayout& layout() const override { return lay_; }
+  nlohmann::json config_json() const override { return unit_config_json("div", to_json_params(c_)); }
+  void compute(VecRow& r) const override {
+    const DivSig q = div_sig(c_, r[0], r[1]);
+    r[2] = q.sig;
+    r[3] = vec_pack(q.exp_adj, kDivExpAdjBits);
+    r[4] = r[1] == 0;
+  }
+  std::vector<VecRow> directed() const override {
+    std::vector<VecRow> v;
+    auto add = [&](uint64_t n, uint64_t d) { v.push_back({n, d, 0, 0, 0}); };
+    const uint64_t nmin = bit(nb_ - 1), nmax = vec_mask(nb_), dmin = bit(db_ - 1), dmax = vec_mask(db_);
+    // Extremes and zeros (den = 0: the RTL raises out_dbz and saturates, as the model).
+    for (uint64_t n : {nmin, nmin + 1, nmax - 1, nmax})
+      for (uint64_t d : {dmin, dmin + 1, dmax - 1, dmax}) add(n, d);
+    for (uint64_t n : {uint64_t(0), nmin, nmax}) add(n, 0);
+    for (uint64_t d : {dmin, dmax}) add(0, d);
+    // Equal operands and n = d ± 1 ulp of n (d aligned to n's width), across the range.
+    const int sh = nb_ - db_;
+    auto align = [&](uint64_t d) { return sh >= 0 ? d << sh : d >> -sh; };
+    for (uint64_t d : {dmin, dmin + 1, dmin | (dmin >> 1), dmax - 1, dmax}) {
+      const uint64_t n = align(d);
+      if (n >= nmin && n <= nmax) add(n, d);
+      if (n - 1 >= nmin) add(n - 1, d);
+      if (n + 1 <= nmax) add(n + 1, d);
+    }
+    // Round-to-nearest-even ties and near-ties: d = 1.0, n with the bit below the quotient lsb set.
+    if (nb_ > qb_) {
+      const uint64_t half = bit(nb_ - qb_ - 1);
+      for (uint64_t base : {nmin, nmin + 2 * half, nmax & ~vec_mask(nb_ - qb_)}) {
+        add(base + half, dmin);
+        add(base + half - 1, dmin);
+        if (half > 1 || base + half + 1 <= nmax) add(std::min(base + half + 1, nmax), dmin);
+      }
+    }
+    // Powers of two in the divisor's fraction (quotients with long carry chains).
+    for (int i = 0; i < db_ - 1; ++i) add(nmax, dmin | bit(i));
+    return v;
+  }
+  // Random: 1 case in 32 has den = 0, 1 in 32 num = 0, 1 in 16 has n within ±8 of the aligned d
+  // (quotients near 1, the exp_adj boundary); the others are uniform significands.
+  void random(std::mt19937_64& rng, VecRow& r) const override {
+    const uint64_t sel = rng() & 31;
+    r[0] = random_sig(rng, nb_);
+    r[1] = random_sig(rng, db_);
+    if (sel == 0) r[1] = 0;
+    if (sel == 1) r[0] = 0;
+    if (sel == 2 || sel == 3) {
+      const int sh = nb_ - db_;
+      const uint64_t n = sh >= 0 ? r[1] << sh : r[1] >> -sh;
+      const int64_t delta = random_in(rng, -8, 8);
+      const uint64_t m = (uint64_t)((int64_t)n + delta);
+      r[0] = (m >= bit(nb_ - 1) && m <= vec_mask(nb_)) ? m : n;
+    }
+  }
+  // Every pair of significands (msb set) when there are at most kMaxExhaustive.
+  uint64_t exhaustive_count() const override {
+    const int b = (nb_ - 1) + (db_ - 1);
+    return bit(std::min(b, 63)) <= kMaxExhaustive ? bit(b) : 0;
+  }
+  void exhaustive(uint64_t i, VecRow& r) const override {
+    r[0] = bit(nb_ - 1) | (i >> (db_ - 1));
+    r[1] = bit(db_ - 1) | (i & vec_mask(db_ - 1));
+  }
+
+ private:
+  DivConfig c_;
+  int nb_, db_, qb_;
+  VecLayout lay_;
+};
+
+}  // namespace
+
+std::vector<VectorUnitInfo> builtin_vector_units() {
+  return {
+      {"div", "fxr_div", "per-pixel significand divider (div_sig)",
+       [](const Config& c) { return std::make_unique<DivVectors>(c); }},
+  };
+}
 
 }  // namespace fxr

@@ -72,6 +72,13 @@ std::string slurp(const std::string& p) {
   ss << in.rdbuf();
   return ss.str();
 }
+// 0 when equal, else the 1-based number of the first line that differs.
+size_t first_different_line(const std::string& a, const std::string& b) {
+  if (a == b) return 0;
+  size_t line = 1;
+  for (size_t i = 0; i < std::min(a.size(), b.size()) && a[i] == b[i]; ++i) line += a[i] == '\n';
+  return line;
+}
 void spit(const std::string& p, const std::string& s) { std::ofstream(p, std::ios::binary) << s; }
 
 class VectorsFile : public ::testing::Test {
@@ -269,4 +276,38 @@ TEST(VectorsUnits, UnknownUnitIsAnErrorListingTheKnownOnes) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("toy_add"), std::string::npos);
   }
+}
+
+// The committed sets under vectors/<unit>/ must be exactly what the generator writes today for
+// the default configuration: regenerate with the manifest's seed and counts and compare bytes.
+TEST(VectorsCommitted, RegeneratingGivesIdenticalFiles) {
+  const char* src = std::getenv("FXR_SOURCE_DIR");
+  const fs::path root = fs::path(src ? src : ".") / "vectors";
+  ASSERT_TRUE(fs::is_directory(root)) << root;
+  int checked = 0;
+  for (const auto& u : vector_units()) {
+    const fs::path hex = root / u.name / (u.name + ".hex");
+    if (!fs::exists(hex)) continue;
+    ++checked;
+    const VecFile f = read_vectors(hex.string(), nullptr);
+    uint64_t random = 0;
+    bool exhaustive = false;
+    for (const auto& c : f.manifest.cases) {
+      if (c.kind == "random") random = c.count;
+      if (c.kind == "exhaustive") exhaustive = true;
+    }
+    const fs::path tmp = fs::temp_directory_path() / ("fxr_vectors_regen_" + std::to_string(::getpid()));
+    fs::create_directories(tmp);
+    write_unit_vectors(u.name, Config{}, f.manifest.seed, random, exhaustive, tmp.string());
+    const std::string how = "regenerate with: build/app/fxraster vectors " + u.name + " --seed " +
+                            std::to_string(f.manifest.seed) + (exhaustive ? " --exhaustive" : " --count " + std::to_string(random)) +
+                            " --out vectors/" + u.name;
+    EXPECT_EQ(first_different_line(slurp((tmp / (u.name + ".hex")).string()), slurp(hex.string())), 0u)
+        << u.name << ".hex is stale; " << how;
+    EXPECT_EQ(first_different_line(slurp((tmp / (u.name + ".json")).string()),
+                                   slurp(fs::path(hex).replace_extension(".json").string())), 0u)
+        << u.name << ".json is stale; " << how;
+    fs::remove_all(tmp);
+  }
+  EXPECT_GE(checked, 1);
 }
