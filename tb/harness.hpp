@@ -76,6 +76,7 @@ struct RunResult {
   uint64_t errors = 0;   // mismatching, extra or lost outputs
   uint64_t sent = 0;     // inputs accepted by the DUT
   uint64_t cycles = 0;
+  int64_t first_latency = -1;  // cycles from the first input transfer to the first output valid
   double seconds = 0;
   double vectors_per_s = 0;
   bool timeout = false;
@@ -167,6 +168,7 @@ RunResult simulate(const VecLayout& lay, const SourceFactory& make_source, const
   bool offering = false;  // valid stays high until accepted (no retraction)
   std::deque<std::pair<uint64_t, VecRow>> inflight;
   uint64_t vec_in = 0, last_progress = 0, idle_after_end = 0;
+  int64_t first_in_cycle = -1;
   const auto t0 = std::chrono::steady_clock::now();
 
   auto record = [&](Mismatch m) {
@@ -187,6 +189,8 @@ RunResult simulate(const VecLayout& lay, const SourceFactory& make_source, const
     dut->eval();
     dump(2 * cycle);
     const bool in_fire = offering && dut->in_ready_o;
+    if (dut->out_valid_o && res.first_latency < 0 && first_in_cycle >= 0)
+      res.first_latency = (int64_t)cycle - first_in_cycle;
     const bool out_fire = dut->out_valid_o && dut->out_ready_i;
     if (out_fire) {
       P::sample(*dut, got);
@@ -207,6 +211,7 @@ RunResult simulate(const VecLayout& lay, const SourceFactory& make_source, const
     }
     if (in_fire) {
       if (inflight.empty()) last_progress = cycle;  // the timeout counts from the oldest owed output
+      if (first_in_cycle < 0) first_in_cycle = (int64_t)cycle;
       inflight.emplace_back(vec_in++, pending);
       ++res.sent;
       offering = false;
@@ -267,7 +272,7 @@ RunResult run(const VecLayout& lay, const SourceFactory& src, const HarnessOptio
   }
   // Summary JSON and mismatch CSV beside the waveform.
   nlohmann::json j{{"unit", o.unit},       {"run", o.run_name},      {"checked", r.checked},
-                   {"errors", r.errors},   {"sent", r.sent},         {"cycles", r.cycles},
+                   {"errors", r.errors},   {"sent", r.sent},         {"cycles", r.cycles}, {"first_latency", r.first_latency},
                    {"seconds", r.seconds}, {"vectors_per_s", r.vectors_per_s},
                    {"timeout", r.timeout}, {"sim_error", r.sim_error}, {"passed", r.passed()},
                    {"seed", o.seed},       {"in_gap_pct", o.in_gap_pct}, {"out_stall_pct", o.out_stall_pct},
