@@ -14,6 +14,7 @@
 #include "fxr/div.hpp"
 #include "fxr/param.hpp"
 #include "fxr/raster_config.hpp"
+#include "fxr/recip.hpp"
 
 namespace fxr {
 
@@ -25,11 +26,13 @@ struct Config {
   // (Members are added here as units land; for_each_unit lists each once.)
   RasterConfig raster;
   DivConfig div;
+  RecipConfig recip;
 
   template <class F>
   void for_each_unit(F&& f) {
     f("raster", raster);
     f("div", div);
+    f("recip", recip);
   }
   template <class F>
   void for_each_unit(F&& f) const {
