@@ -119,6 +119,20 @@ inline SourceFactory model_source(const VectorModel& m, uint64_t seed, uint64_t 
   };
 }
 
+// The unit's exhaustive sweep (VectorModel::exhaustive), outputs computed by the model.
+inline SourceFactory exhaustive_source(const VectorModel& m) {
+  return [&m]() {
+    auto i = std::make_shared<uint64_t>(0);
+    return Source([&m, i](VecRow& r) {
+      if (*i >= m.exhaustive_count()) return false;
+      r.assign(m.layout().size(), 0);
+      m.exhaustive((*i)++, r);
+      m.compute(r);
+      return true;
+    });
+  };
+}
+
 namespace detail {
 
 // One simulation pass. With trace_window = {first, last}, dumps those cycles into `wave`.

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "fxr/div.hpp"
+#include "fxr/recip.hpp"
 
 namespace fxr {
 
@@ -584,10 +585,105 @@ class DivVectors : public VectorModel {
   VecLayout lay_;
 };
 
+// ---- recip: the reciprocal unit 1/w (fxr/recip.hpp, rtl/fxr_recip.sv) ----------------------
+// Fields: in_neg, in_exp [exp_bits] (signed exponent of the leading one), in_sig [in_sig_bits]
+// (msb set, or 0 for w = 0); out_neg, out_exp [exp_bits], out_sig [out_sig_bits] (msb set),
+// out_dbz (w = 0), out_ovf (exponent overflow). Model: RecipUnit (= fxr::recip).
+
+class RecipVectors : public VectorModel {
+ public:
+  explicit RecipVectors(const Config& c) : c_(c.recip), unit_(c.recip) {
+    n_ = c_.in_sig_bits;
+    o_ = c_.out_sig_bits;
+    eb_ = c_.exp_bits;
+    emin_ = recip_exp_min(c_);
+    emax_ = recip_exp_max(c_);
+    const std::string n = std::to_string(n_), o = std::to_string(o_), e = std::to_string(eb_);
+    const std::string range = "[" + std::to_string(emin_) + ", " + std::to_string(emax_) + "]";
+    lay_ = VecLayout({
+        {"in_neg", VecDir::In, 1, false, "sign of w (1 = negative)"},
+        {"in_exp", VecDir::In, eb_, true, "signed exponent of the leading one of w, " + e + " bits, " + range},
+        {"in_sig", VecDir::In, n_, false,
+         "unsigned significand of w, " + n + " bits, msb set: w = (-1)^neg * sig * 2^(exp-(" + n + "-1)); 0 for w = 0"},
+        {"out_neg", VecDir::Out, 1, false, "sign of 1/w (= in_neg)"},
+        {"out_exp", VecDir::Out, eb_, true, "signed exponent of the leading one of 1/w, " + e + " bits"},
+        {"out_sig", VecDir::Out, o_, false,
+         "unsigned significand of 1/w, " + o + " bits, msb set, round to nearest (fxr::recip)"},
+        {"out_dbz", VecDir::Out, 1, false, "w = 0 (result: largest magnitude)"},
+        {"out_ovf", VecDir::Out, 1, false, "exponent overflow: 1/|w| >= 2^(exp_max+1) (result: largest magnitude)"},
+    });
+  }
+  const VecLayout& layout() const override { return lay_; }
+  nlohmann::json config_json() const override { return unit_config_json("recip", to_json_params(c_)); }
+  void compute(VecRow& r) const override {
+    FxFloat w;
+    w.neg = r[0] != 0;
+    w.sig = r[2];
+    w.exp = (int)vec_unpack_signed(r[1], eb_) - (n_ - 1);
+    const RecipResult q = unit_(w);
+    r[3] = q.value.neg;
+    r[4] = vec_pack(q.value.exp + (o_ - 1), eb_);  // lead exponent, always in [emin, emax]
+    r[5] = q.value.sig;
+    r[6] = q.div_by_zero;
+    r[7] = q.exp_overflow;
+  }
+  std::vector<VecRow> directed() const override {
+    std::vector<VecRow> v;
+    auto add = [&](bool neg, int exp, uint64_t sig) { v.push_back({neg, vec_pack(exp, eb_), sig, 0, 0, 0, 0, 0}); };
+    const uint64_t one = bit(n_ - 1), max = vec_mask(n_);
+    // w = ±0 (divide by zero), with a few exponents (the exponent of a zero is ignored).
+    for (int e : {0, emin_, emax_}) add(false, e, 0);
+    add(true, 0, 0);
+    // Powers of two, just above and just below, at the exponent extremes (w = 2^emin overflows).
+    for (int e : {0, 1, -1, emin_, emin_ + 1, emax_, emax_ - 1})
+      for (uint64_t m : {one, one + 1, max, max - 1}) add(false, e, m);
+    for (uint64_t m : {one, one + 1, max}) add(true, 0, m);
+    add(true, emin_, one);
+    add(true, emax_, max);
+    // Every seed-table segment boundary: first significand of each segment and the one before.
+    const int s = c_.seed_index_bits;
+    for (uint64_t i = 1; i < bit(s); ++i) {
+      const uint64_t m = one + (i << (n_ - 1 - s));
+      add(false, 0, m - 1);
+      add(false, 0, m);
+    }
+    return v;
+  }
+  // Random: 1 case in 64 is w = 0, 1 in 64 has exp = emin, 1 in 64 exp = emax, 1 in 64 an exact
+  // power of two; the others: random sign, exponent uniform in [emin, emax], uniform significand.
+  void random(std::mt19937_64& rng, VecRow& r) const override {
+    const uint64_t sel = rng() & 63;
+    r[0] = rng() & 1;
+    int e = (int)random_in(rng, emin_, emax_);
+    r[2] = random_sig(rng, n_);
+    if (sel == 0) r[2] = 0;
+    if (sel == 1) e = emin_;
+    if (sel == 2) e = emax_;
+    if (sel == 3) r[2] = bit(n_ - 1);
+    r[1] = vec_pack(e, eb_);
+  }
+  // Every significand at exponent 0 (the significand datapath sees nothing else: the exponent
+  // path is a negation), when there are at most kMaxExhaustive.
+  uint64_t exhaustive_count() const override { return bit(n_ - 1) <= kMaxExhaustive ? bit(n_ - 1) : 0; }
+  void exhaustive(uint64_t i, VecRow& r) const override {
+    r[0] = 0;
+    r[1] = 0;
+    r[2] = bit(n_ - 1) | i;
+  }
+
+ private:
+  RecipConfig c_;
+  RecipUnit unit_;
+  int n_, o_, eb_, emin_, emax_;
+  VecLayout lay_;
+};
+
 }  // namespace
 
 std::vector<VectorUnitInfo> builtin_vector_units() {
   return {
+      {"recip", "fxr_recip", "reciprocal unit 1/w (fxr::recip)",
+       [](const Config& c) { return std::make_unique<RecipVectors>(c); }},
       {"div", "fxr_div", "per-pixel significand divider (div_sig)",
        [](const Config& c) { return std::make_unique<DivVectors>(c); }},
   };
