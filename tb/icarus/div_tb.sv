@@ -13,9 +13,7 @@
 module div_tb;
   import fxr_config_pkg::*;
 
-  function automatic int pad(input int w);  // bits a field occupies: whole hex digits
-    return 4 * ((w + 3) / 4);
-  endfunction
+  `include "vec_layout.svh"
   localparam Unit           = "div";
   localparam int ExpAdjBits  = 2;
   localparam int OffDbz      = 0;

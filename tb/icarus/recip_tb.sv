@@ -13,9 +13,7 @@
 module recip_tb;
   import fxr_config_pkg::*;
 
-  function automatic int pad(input int w);  // bits a field occupies: whole hex digits
-    return 4 * ((w + 3) / 4);
-  endfunction
+  `include "vec_layout.svh"
   localparam Unit           = "recip";
   localparam int OffOvf      = 0;
   localparam int OffDbz      = OffOvf + pad(1);
