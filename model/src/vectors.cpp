@@ -12,6 +12,9 @@
 
 namespace fxr {
 
+// Largest exhaustive sweep a unit offers (lines): 2^24 lines are about 0.4 GB of hex.
+static constexpr uint64_t kMaxExhaustive = 1ull << 24;
+
 // ---- layout ----------------------------------------------------------------------------------
 
 VecLayout::VecLayout(std::vector<VecField> fields) : fields_(std::move(fields)) {
@@ -249,6 +252,10 @@ void VecWriter::finish(VecManifest m) {
 VecManifest write_unit_vectors(const std::string& unit, const Config& cfg, uint64_t seed,
                                uint64_t count, bool exhaustive, const std::string& dir) {
   auto m = make_vector_model(unit, cfg);
+  if (exhaustive && m->exhaustive_count() == 0)  // before any file is opened
+    throw ConfigError("vectors " + unit + " --exhaustive: the input domain at this configuration is too "
+                      "large to enumerate (more than " + std::to_string(kMaxExhaustive) +
+                      " lines); use --count for random cases");
   VecWriter w(dir + "/" + unit + ".hex", m->layout());
   VecManifest man;
   man.unit = unit;
@@ -483,8 +490,6 @@ inline uint64_t random_sig(std::mt19937_64& rng, int bits) { return bit(bits - 1
 inline int64_t random_in(std::mt19937_64& rng, int64_t lo, int64_t hi) {
   return lo + (int64_t)((rng() >> 32) % (uint64_t)(hi - lo + 1));
 }
-// Largest exhaustive sweep a unit offers (lines): 2^24 lines are about 0.4 GB of hex.
-constexpr uint64_t kMaxExhaustive = 1ull << 24;
 
 nlohmann::json unit_config_json(const char* unit, const nlohmann::json& params) {
   return {{"version", kConfigFormatVersion}, {unit, params}};
