@@ -1,6 +1,7 @@
 // Stage 9: the per-pixel significand divider (fxr/div.hpp has the contracts).
 #include "fxr/div.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -255,15 +256,23 @@ DivCost div_cost(const DivConfig& c) {
     // the post stage consumes the previous one.
     k.ii = iter ? stages + 1 : 1;
     const int step_adders = iter ? c.bits_per_stage : steps;
-    k.adder_bits_total = (w + 1)                 // pre: compare a < b
-                         + rb                    // pre: a' − b
+    k.adder_bits_total = rb                      // pre: a − b (its sign is k)
+                         + rb                    // pre: 2a − b, in parallel
                          + step_adders * rb      // recurrence add/sub
-                         + rb                    // post: negative-remainder correction r + b
-                         + (qb + 1)              // post: Q − 1
-                         + rb                    // post: 2r − b (RNE decision)
+                         + (rb + 1)              // post: t = 2r ∓ b, the RNE decision
                          + (qb + 1);             // post: increment
-    const int stage_ff = rb + w + qb + 3;        // r, b, P, k / zero / dbz flags (+ valid)
-    k.ff_bits = (iter ? 1 : stages) * stage_ff + (qb + 2 + 1 + 1);
+    // Register sets: r, b, the digit bits P (1 + steps so far, at most qb), k / dbz / nz / valid.
+    // Pipelined: sets 0 (pre) .. stages; iterative: one set plus busy and the cycle counter.
+    const int out_ff = qb + 2 + 1 + 1;  // sig, exp_adj, dbz, valid
+    if (iter) {
+      int cnt_bits = 0;
+      while ((1 << cnt_bits) < stages + 1) ++cnt_bits;
+      k.ff_bits = rb + w + qb + 4 + 1 + cnt_bits + out_ff;
+    } else {
+      k.ff_bits = out_ff;
+      for (int st = 0; st <= stages; ++st)
+        k.ff_bits += rb + w + std::min(qb, 1 + st * c.bits_per_stage) + 4;
+    }
   } else {
     const int f = c.nr_frac_bits;
     // pre (align, compare, seed ROM) → 2 per NR step (b·y, y·e) → quotient multiply →
