@@ -72,7 +72,9 @@ module fxr_div #(
       .out_dbz_o    (out_dbz_o)
     );
   end else begin : gen_unsupported
-    $error("fxr_div: Algorithm %0d (recip_mul) has no RTL yet; use radix2 (%0d)", Algorithm, AlgRadix2);
+    // An elaboration-time $error would be clearer, but Icarus 11 does not parse it here.
+    initial $fatal(1, "fxr_div: Algorithm %0d (recip_mul) has no RTL yet; use radix2 (%0d)",
+                   Algorithm, AlgRadix2);
     assign in_ready_o    = 1'b0;
     assign out_valid_o   = 1'b0;
     assign out_sig_o     = '0;

@@ -143,39 +143,59 @@ module fxr_div_radix2 #(
     end
 
     for (genvar s = 0; s < Stages; s++) begin : gen_stage
-      // Step j's input at [j*Width +: Width], its output at [(j+1)*Width +: Width].
-      logic [(BitsPerStage+1)*RemBits-1:0]  r_c;
-      logic [(BitsPerStage+1)*QuotBits-1:0] p_c;
-      assign r_c[0 +: RemBits]  = r_q[s*RemBits +: RemBits];
-      assign p_c[0 +: QuotBits] = p_q[s*QuotBits +: QuotBits];
+      // Slice offsets of stage s (in) and s + 1 (out). Icarus 11 evaluates genvar expressions
+      // in port connections and part selects of nested generate loops as X: use localparams.
+      localparam int RIn  = s * RemBits;
+      localparam int ROut = (s + 1) * RemBits;
+      localparam int PIn  = s * QuotBits;
+      localparam int POut = (s + 1) * QuotBits;
+      localparam int BIn  = s * AlignBits;
+      localparam int BOut = (s + 1) * AlignBits;
+      localparam int SIn  = s;
+      localparam int SOut = s + 1;
+      // Step j's input at [j*Width +: Width], its output at [(j+1)*Width +: Width]. Nets, not
+      // variables: slices have different drivers.
+      wire [(BitsPerStage+1)*RemBits-1:0]  r_c;
+      wire [(BitsPerStage+1)*QuotBits-1:0] p_c;
+      assign r_c[0 +: RemBits]  = r_q[RIn +: RemBits];
+      assign p_c[0 +: QuotBits] = p_q[PIn +: QuotBits];
       for (genvar j = 0; j < BitsPerStage; j++) begin : gen_step
+        localparam int  JrIn   = j * RemBits;
+        localparam int  JrOut  = (j + 1) * RemBits;
+        localparam int  JpIn   = j * QuotBits;
+        localparam int  JpOut  = (j + 1) * QuotBits;
+        localparam bit  StepEn = (s * BitsPerStage + j) < Steps;  // last stage may be partial
+        logic [RemBits-1:0]  r_out;
+        logic [QuotBits-1:0] p_out;
+        assign r_c[JrOut +: RemBits]  = r_out;
+        assign p_c[JpOut +: QuotBits] = p_out;
         fxr_div_radix2_step #(
           .AlignBits(AlignBits),
           .QuotBits (QuotBits)
         ) u_step (
-          .en_i((s * BitsPerStage + j) < Steps),
-          .r_i (r_c[j*RemBits +: RemBits]),
-          .p_i (p_c[j*QuotBits +: QuotBits]),
-          .b_i (b_q[s*AlignBits +: AlignBits]),
-          .r_o (r_c[(j+1)*RemBits +: RemBits]),
-          .p_o (p_c[(j+1)*QuotBits +: QuotBits])
+          .en_i(StepEn),
+          .r_i (r_c[JrIn +: RemBits]),
+          .p_i (p_c[JpIn +: QuotBits]),
+          .b_i (b_q[BIn +: AlignBits]),
+          .r_o (r_out),
+          .p_o (p_out)
         );
       end
       always_ff @(posedge clk_i or negedge rst_ni) begin
         if (!rst_ni) begin
-          v_q[s+1] <= 1'b0;
+          v_q[SOut] <= 1'b0;
         end else if (out_free) begin
-          v_q[s+1] <= v_q[s];
+          v_q[SOut] <= v_q[SIn];
         end
       end
       always_ff @(posedge clk_i) begin
-        if (out_free && v_q[s]) begin
-          r_q[(s+1)*RemBits +: RemBits]     <= r_c[BitsPerStage*RemBits +: RemBits];
-          p_q[(s+1)*QuotBits +: QuotBits]   <= p_c[BitsPerStage*QuotBits +: QuotBits];
-          b_q[(s+1)*AlignBits +: AlignBits] <= b_q[s*AlignBits +: AlignBits];
-          k_q[s+1]   <= k_q[s];
-          dbz_q[s+1] <= dbz_q[s];
-          nz_q[s+1]  <= nz_q[s];
+        if (out_free && v_q[SIn]) begin
+          r_q[ROut +: RemBits]   <= r_c[BitsPerStage*RemBits +: RemBits];
+          p_q[POut +: QuotBits]  <= p_c[BitsPerStage*QuotBits +: QuotBits];
+          b_q[BOut +: AlignBits] <= b_q[BIn +: AlignBits];
+          k_q[SOut]              <= k_q[SIn];
+          dbz_q[SOut]            <= dbz_q[SIn];
+          nz_q[SOut]             <= nz_q[SIn];
         end
       end
     end
@@ -192,8 +212,8 @@ module fxr_div_radix2 #(
     logic [CntBits-1:0]   cnt_q;
     logic                 done;
     logic                 accept;
-    logic [(BitsPerStage+1)*RemBits-1:0]  r_c;  // step j: in [j*W +: W], out [(j+1)*W +: W]
-    logic [(BitsPerStage+1)*QuotBits-1:0] p_c;
+    wire [(BitsPerStage+1)*RemBits-1:0]  r_c;  // step j: in [j*W +: W], out [(j+1)*W +: W]
+    wire [(BitsPerStage+1)*QuotBits-1:0] p_c;
 
     assign done       = busy_q && (cnt_q == LastCnt);
     assign out_load   = done;
@@ -209,18 +229,27 @@ module fxr_div_radix2 #(
     assign r_c[0 +: RemBits]  = r_q;
     assign p_c[0 +: QuotBits] = p_q;
     for (genvar j = 0; j < BitsPerStage; j++) begin : gen_step
-      logic [IdxBits-1:0] step_idx;
-      assign step_idx = IdxBits'(cnt_q) * IdxBits'(BitsPerStage) + IdxBits'(j);
+      localparam int JrIn  = j * RemBits;  // localparams, not genvar expressions (Icarus 11)
+      localparam int JrOut = (j + 1) * RemBits;
+      localparam int JpIn  = j * QuotBits;
+      localparam int JpOut = (j + 1) * QuotBits;
+      localparam logic [IdxBits-1:0] JIdx = IdxBits'(j);
+      logic [IdxBits-1:0]  step_idx;
+      logic [RemBits-1:0]  r_out;
+      logic [QuotBits-1:0] p_out;
+      assign r_c[JrOut +: RemBits]  = r_out;
+      assign p_c[JpOut +: QuotBits] = p_out;
+      assign step_idx = IdxBits'(cnt_q) * IdxBits'(BitsPerStage) + JIdx;
       fxr_div_radix2_step #(
         .AlignBits(AlignBits),
         .QuotBits (QuotBits)
       ) u_step (
         .en_i(step_idx < IdxBits'(Steps)),
-        .r_i (r_c[j*RemBits +: RemBits]),
-        .p_i (p_c[j*QuotBits +: QuotBits]),
+        .r_i (r_c[JrIn +: RemBits]),
+        .p_i (p_c[JpIn +: QuotBits]),
         .b_i (b_q),
-        .r_o (r_c[(j+1)*RemBits +: RemBits]),
-        .p_o (p_c[(j+1)*QuotBits +: QuotBits])
+        .r_o (r_out),
+        .p_o (p_out)
       );
     end
 
