@@ -6,6 +6,7 @@
 //   <Suite>.RtlMatchesModelOnAMillionRandomInputs  lock-step: fresh random inputs, model vs RTL
 //   <Suite>.LatencyAndThroughputMatchTheCostModel  no gaps, no back-pressure: the first result after
 //                                                the cost model's latency, then one per II cycles
+//   <Suite>.WithheldOutputsAreReportedLost       out_ready held low: timeout, every input lost
 //   <Suite>.CorruptedExpectedValueIsCaught       one flipped output bit in a copy of the vectors
 //                                                is reported as exactly that mismatch
 //
@@ -51,10 +52,11 @@ RunResult run_file(const std::string& unit, const std::string& hex, const std::s
 }
 
 template <class P>
-RunResult run_lockstep(const std::string& unit, uint64_t count, uint64_t seed, HarnessOptions o = {}) {
+RunResult run_lockstep(const std::string& unit, const std::string& run_name, uint64_t count, uint64_t seed,
+                       HarnessOptions o = {}) {
   const auto m = make_vector_model(unit, Config{});
   o.unit = unit;
-  o.run_name = unit + "_lockstep";
+  o.run_name = run_name;
   return run<P>(m->layout(), model_source(*m, seed, count), o);
 }
 
@@ -100,30 +102,47 @@ void expect_corruption_caught(const std::string& unit, const std::string& hex, s
   TEST(Suite, VectorFieldsMatchThePorts) { fxr::tb::expect_fields_match<Ports>(unit); }               \
   TEST(Suite, RtlMatchesCommittedVectors) {                                                           \
     const auto r = fxr::tb::run_file<Ports>(                                                          \
-        unit, fxr::tb::source_path("vectors/" unit "/" unit ".hex"), unit "_committed");             \
+        unit, fxr::tb::source_path("vectors/" unit "/" unit ".hex"), unit "_committed");              \
     EXPECT_TRUE(r.passed());                                                                          \
   }                                                                                                   \
   TEST(Suite, RtlMatchesGeneratedVectors) {                                                           \
     const auto r = fxr::tb::run_file<Ports>(                                                          \
-        unit, fxr::tb::binary_path("vectors/" unit "/" unit ".hex"), unit "_generated");             \
+        unit, fxr::tb::binary_path("vectors/" unit "/" unit ".hex"), unit "_generated");              \
     EXPECT_TRUE(r.passed());                                                                          \
   }                                                                                                   \
   TEST(Suite, RtlMatchesModelOnAMillionRandomInputs) {                                                \
-    const auto r = fxr::tb::run_lockstep<Ports>(unit, fxr::tb::kLockStepCount, fxr::tb::kLockStepSeed); \
+    const auto r = fxr::tb::run_lockstep<Ports>(unit, unit "_lockstep", fxr::tb::kLockStepCount,      \
+                                                fxr::tb::kLockStepSeed);                              \
     EXPECT_TRUE(r.passed());                                                                          \
     EXPECT_EQ(r.checked, fxr::tb::kLockStepCount);                                                    \
   }                                                                                                   \
-  TEST(Suite, LatencyAndThroughputMatchTheCostModel) {                                                    \
+  TEST(Suite, LatencyAndThroughputMatchTheCostModel) {                                                \
     fxr::tb::HarnessOptions o;                                                                        \
     o.in_gap_pct = 0;                                                                                 \
     o.out_stall_pct = 0;                                                                              \
     const uint64_t n = 10000;                                                                         \
-    const auto r = fxr::tb::run_lockstep<Ports>(unit, n, 7, o);                                       \
+    const auto r = fxr::tb::run_lockstep<Ports>(unit, unit "_throughput", n, 7, o);                   \
     EXPECT_TRUE(r.passed());                                                                          \
     EXPECT_EQ(r.first_latency, Ports::latency());                                                     \
-    /* n results need n·II + latency cycles (+ reset and the idle drain at the end). */              \
+    /* n results need n·II + latency cycles (+ reset and the idle drain at the end). */               \
     EXPECT_LE(r.cycles, n * (uint64_t)Ports::ii() + (uint64_t)Ports::latency() + o.reset_cycles +     \
                             o.drain_cycles + 2);                                                      \
+  }                                                                                                   \
+  TEST(Suite, WithheldOutputsAreReportedLost) {                                                       \
+    /* out_ready held low: the DUT fills up and stops; the harness must time out and report every     \
+       accepted input as lost (the checker can fail on missing outputs, not only on wrong ones). */   \
+    fxr::tb::HarnessOptions o;                                                                        \
+    o.out_stall_pct = 100;                                                                            \
+    o.timeout_cycles = 100;                                                                           \
+    o.write_wave = false;                                                                             \
+    o.print = false;                                                                                  \
+    const auto r = fxr::tb::run_lockstep<Ports>(unit, unit "_withheld", 1000, 3, o);                  \
+    EXPECT_FALSE(r.passed());                                                                         \
+    EXPECT_TRUE(r.timeout);                                                                           \
+    EXPECT_EQ(r.checked, 0u);                                                                         \
+    EXPECT_GT(r.sent, 0u);                                                                            \
+    EXPECT_EQ(r.errors, r.sent);                                                                      \
+    EXPECT_EQ(r.classes.at("lost"), r.sent);                                                          \
   }                                                                                                   \
   TEST(Suite, CorruptedExpectedValueIsCaught) {                                                       \
     fxr::tb::expect_corruption_caught<Ports>(unit, fxr::tb::source_path("vectors/" unit "/" unit ".hex"), \
