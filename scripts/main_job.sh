@@ -6,4 +6,5 @@ OUT=${1:-out}
 mkdir -p "$OUT"
 FXR=build/app/fxraster
 "$FXR" config --emit-json "$OUT/config.json" --emit-md "$OUT/config.md"
+for u in recip div; do "$FXR" vectors "$u" --seed 1 --count 100000 --out "$OUT/vectors/$u"; done
 echo "main job: wrote $OUT/"
