@@ -21,8 +21,7 @@
 // Latency (cycles from the input transfer to out_valid_o, = fxr::div_cost().latency):
 //   radix2: ceil((QuotBits - 1) / BitsPerStage) + 2 (25 at the default configuration);
 //   II 1 pipelined (Schedule 0), ceil((QuotBits - 1) / BitsPerStage) + 1 iterative (Schedule 1).
-//   Algorithm 0 (recip_mul) is modelled (fxr::div_sig_recip_mul) but has no RTL yet: elaboration
-//   stops with an error.
+//   recip_mul: 2 * NrSteps + 4 (8 at NrSteps 2), II 1 (always pipelined).
 module fxr_div #(
   parameter int Algorithm      = fxr_config_pkg::DivAlgorithm,  // 0 recip_mul, 1 radix2
   parameter int NumBits        = fxr_config_pkg::DivNumBits,
@@ -71,19 +70,33 @@ module fxr_div #(
       .out_exp_adj_o(out_exp_adj_o),
       .out_dbz_o    (out_dbz_o)
     );
-  end else begin : gen_unsupported
-    // An elaboration-time $error would be clearer, but Icarus 11 does not parse it here.
-    initial $fatal(1, "fxr_div: Algorithm %0d (recip_mul) has no RTL yet; use radix2 (%0d)",
-                   Algorithm, AlgRadix2);
-    assign in_ready_o    = 1'b0;
-    assign out_valid_o   = 1'b0;
-    assign out_sig_o     = '0;
-    assign out_exp_adj_o = '0;
-    assign out_dbz_o     = 1'b0;
+  end else begin : gen_recip_mul
+    fxr_div_recip_mul #(
+      .NumBits      (NumBits),
+      .DenBits      (DenBits),
+      .QuotBits     (QuotBits),
+      .SeedIndexBits(SeedIndexBits),
+      .SeedBits     (SeedBits),
+      .NrSteps      (NrSteps),
+      .NrFracBits   (NrFracBits)
+    ) u_recip_mul (
+      .clk_i        (clk_i),
+      .rst_ni       (rst_ni),
+      .in_valid_i   (in_valid_i),
+      .in_ready_o   (in_ready_o),
+      .in_num_i     (in_num_i),
+      .in_den_i     (in_den_i),
+      .out_valid_o  (out_valid_o),
+      .out_ready_i  (out_ready_i),
+      .out_sig_o    (out_sig_o),
+      .out_exp_adj_o(out_exp_adj_o),
+      .out_dbz_o    (out_dbz_o)
+    );
   end
 
-  // recip_mul parameters: part of the configuration, used once its RTL exists.
+  // Parameters of the algorithm not instantiated are unused by design.
   /* verilator lint_off UNUSEDPARAM */
-  localparam int UnusedRecipParams = SeedIndexBits + SeedBits + NrSteps + NrFracBits + AlgRecipMul;
+  localparam int UnusedParams = SeedIndexBits + SeedBits + NrSteps + NrFracBits + BitsPerStage +
+                                Schedule + AlgRecipMul;
   /* verilator lint_on UNUSEDPARAM */
 endmodule
