@@ -24,16 +24,15 @@ module fxr_div_radix2_pre #(
   logic [RemBits-1:0]   d1;  // a - b, two's complement
   logic [RemBits-1:0]   d2;  // 2a - b
 
-  if (AlignBits > NumBits) begin : gen_pad_num
-    assign a = {num_i, {(AlignBits - NumBits){1'b0}}};
-  end else begin : gen_num
-    assign a = num_i;
-  end
-  if (AlignBits > DenBits) begin : gen_pad_den
-    assign b_o = {den_i, {(AlignBits - DenBits){1'b0}}};
-  end else begin : gen_den
-    assign b_o = den_i;
-  end
+  fxr_div_align #(
+    .NumBits(NumBits),
+    .DenBits(DenBits)
+  ) u_align (
+    .num_i(num_i),
+    .den_i(den_i),
+    .a_o  (a),
+    .b_o  (b_o)
+  );
 
   assign d1    = {2'b00, a} - {2'b00, b_o};
   assign d2    = {1'b0, a, 1'b0} - {2'b00, b_o};

@@ -58,16 +58,15 @@ module fxr_div_recip_mul #(
   logic [SeedW-1:0]         seed;
   logic [YBits-1:0]         y0;
 
-  if (W > NumBits) begin : gen_pad_num
-    assign a = {in_num_i, {(W - NumBits){1'b0}}};
-  end else begin : gen_num
-    assign a = in_num_i;
-  end
-  if (W > DenBits) begin : gen_pad_den
-    assign b = {in_den_i, {(W - DenBits){1'b0}}};
-  end else begin : gen_den
-    assign b = in_den_i;
-  end
+  fxr_div_align #(
+    .NumBits(NumBits),
+    .DenBits(DenBits)
+  ) u_align (
+    .num_i(in_num_i),
+    .den_i(in_den_i),
+    .a_o  (a),
+    .b_o  (b)
+  );
   assign k  = a < b;
   assign a1 = k ? {a, 1'b0} : {1'b0, a};
 
