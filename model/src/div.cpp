@@ -96,22 +96,22 @@ DivSig div_sig_radix2_steps(const DivConfig& c, uint64_t n, uint64_t d) {
   DivSig s;
   if (special(c, n, d, &s)) return s;
   const Aligned x = align(c, n, d);
-  const i128 b = (i128)x.b;
+  // int64_t suffices: |2r ± b| < 3·2^W ≤ 3·2^60 (W = div_align_bits ≤ 60 by the ranges).
+  const int64_t b = (int64_t)x.b;
   // Digit 0 is always +1 because a' ≥ b: r_0 = a' − b ∈ [0, b). Invariant after step i:
   //   a'·2^i = Q_i·b + r_i with r_i ∈ [−b, b) (div_rem_bits bits, signed), digits ∈ {−1, +1}.
-  i128 r = (i128)x.a1 - b;
+  int64_t r = (int64_t)x.a1 - b;
   uint64_t p = 1;  // digit bits p_i = (digit_i == +1), msb first
   for (int i = 0; i < div_radix2_steps(c); ++i) {
-    if (r >= 0) {
-      r = 2 * r - b;  // digit +1
-      p = (p << 1) | 1;
-    } else {
-      r = 2 * r + b;  // digit −1
-      p = p << 1;
-    }
+    // r ≥ 0: r = 2r − b, digit +1;  r < 0: r = 2r + b, digit −1. Written without a branch
+    // (the digit is data-dependent, a branch would mispredict half the time): pos is all
+    // ones when r ≥ 0, and (b ^ pos) − pos is then −b, else b.
+    const int64_t pos = ~(r >> 63);
+    r = 2 * r + ((b ^ pos) - pos);
+    p = (p << 1) | (uint64_t)(pos & 1);
   }
   // Signed-digit to binary: Q = Σ (2p_i − 1)·2^(qb−1−i) = 2P + 1 − 2^qb (an inverted top bit).
-  i128 q = (i128)(((u128)p << 1) | 1) - (i128)pow2(c.quot_bits);
+  int64_t q = (int64_t)((p << 1) | 1) - (int64_t)pow2(c.quot_bits);  // qb ≤ 60: fits
   // Final correction of a negative remainder: Q − 1, r + b. Now Q = floor(X), r ∈ [0, b) exact.
   if (r < 0) {
     q -= 1;
