@@ -407,7 +407,8 @@ VecFile read_vectors(const std::string& hex_path, const Config* expect) {
   if (!in) throw ConfigError(hex_path + ": cannot open");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const size_t nf = lay.size();
-  vf.data.reserve((size_t)m.count * nf);
+  // Reserve from the file's size, not from the manifest's count (which may be anything).
+  vf.data.reserve(text.size() / ((size_t)lay.digits() + 1) * nf);
   size_t pos = 0;
   uint64_t line = 0;
   while (pos < text.size()) {

@@ -258,6 +258,14 @@ TEST_F(VectorsFile, WrongCountInManifestIsAnError) {
   expect_error({"toy_add.json", "cases"});
 }
 
+TEST_F(VectorsFile, AbsurdCountInManifestIsAnErrorNotACrash) {
+  auto j = nlohmann::json::parse(slurp(json_));
+  j["count"] = uint64_t(1) << 62;
+  j["cases"][1]["count"] = (uint64_t(1) << 62) - 2;
+  spit(json_, j.dump());
+  expect_error({"toy_add.hex", "22 lines", "truncated"});
+}
+
 TEST_F(VectorsFile, StaleOutputIsFoundByRecomputation) {
   std::string t = slurp(hex_);
   t[kLine * 6 + 7] = t[kLine * 6 + 7] == '0' ? '1' : '0';  // line 7: lowest digit of out_s
