@@ -12,8 +12,8 @@
 //
 // A unit's tb/<unit>_test.cpp defines its Ports adapter (harness.hpp) with
 //   static std::vector<std::string> fields();   // vector fields in the order drive/sample use
-//   static int latency();                       // cycles, from the cost model
-//   static int ii();                            // initiation interval, from the cost model
+//   static int latency(const fxr::Config&);     // cycles, from the cost model
+//   static int ii(const fxr::Config&);          // initiation interval, from the cost model
 // and writes FXR_COSIM_TESTS(Suite, Ports, "unit").
 #pragma once
 
@@ -53,11 +53,47 @@ RunResult run_file(const std::string& unit, const std::string& hex, const std::s
 
 template <class P>
 RunResult run_lockstep(const std::string& unit, const std::string& run_name, uint64_t count, uint64_t seed,
-                       HarnessOptions o = {}) {
-  const auto m = make_vector_model(unit, Config{});
+                       HarnessOptions o = {}, const Config& cfg = Config{}) {
+  const auto m = make_vector_model(unit, cfg);
   o.unit = unit;
   o.run_name = run_name;
   return run<P>(m->layout(), model_source(*m, seed, count), o);
+}
+
+// The directed cases and `count` random ones of the unit at `cfg`, generated in memory (the
+// parameter-set variants have no committed files), through the DUT.
+template <class P>
+RunResult run_generated(const std::string& unit, const std::string& run_name, const Config& cfg, uint64_t count) {
+  const auto m = make_vector_model(unit, cfg);
+  auto rows = std::make_shared<std::vector<VecRow>>();
+  generate_vectors(*m, 1, count, false, [&](const VecRow& r) { rows->push_back(r); });
+  SourceFactory src = [rows]() {
+    auto i = std::make_shared<size_t>(0);
+    return Source([rows, i](VecRow& r) {
+      if (*i >= rows->size()) return false;
+      r = (*rows)[(*i)++];
+      return true;
+    });
+  };
+  HarnessOptions o;
+  o.unit = unit;
+  o.run_name = run_name;
+  return run<P>(m->layout(), src, o);
+}
+
+// No gaps, no back-pressure: the first result after exactly the cost model's latency, then one
+// every II cycles.
+template <class P>
+void expect_latency_and_throughput(const std::string& unit, const std::string& run_name, const Config& cfg) {
+  HarnessOptions o;
+  o.in_gap_pct = 0;
+  o.out_stall_pct = 0;
+  const uint64_t n = 10000;
+  const auto r = run_lockstep<P>(unit, run_name, n, 7, o, cfg);
+  EXPECT_TRUE(r.passed());
+  EXPECT_EQ(r.first_latency, P::latency(cfg));
+  // n results need n·II + latency cycles (+ reset and the idle drain at the end).
+  EXPECT_LE(r.cycles, n * (uint64_t)P::ii(cfg) + (uint64_t)P::latency(cfg) + o.reset_cycles + o.drain_cycles + 2);
 }
 
 // Flips bit `bit` of output field `field` of vector `vec` in a copy of the file (same base name,
@@ -117,16 +153,7 @@ void expect_corruption_caught(const std::string& unit, const std::string& hex, s
     EXPECT_EQ(r.checked, fxr::tb::kLockStepCount);                                                    \
   }                                                                                                   \
   TEST(Suite, LatencyAndThroughputMatchTheCostModel) {                                                \
-    fxr::tb::HarnessOptions o;                                                                        \
-    o.in_gap_pct = 0;                                                                                 \
-    o.out_stall_pct = 0;                                                                              \
-    const uint64_t n = 10000;                                                                         \
-    const auto r = fxr::tb::run_lockstep<Ports>(unit, unit "_throughput", n, 7, o);                   \
-    EXPECT_TRUE(r.passed());                                                                          \
-    EXPECT_EQ(r.first_latency, Ports::latency());                                                     \
-    /* n results need n·II + latency cycles (+ reset and the idle drain at the end). */               \
-    EXPECT_LE(r.cycles, n * (uint64_t)Ports::ii() + (uint64_t)Ports::latency() + o.reset_cycles +     \
-                            o.drain_cycles + 2);                                                      \
+    fxr::tb::expect_latency_and_throughput<Ports>(unit, unit "_throughput", fxr::Config{});           \
   }                                                                                                   \
   TEST(Suite, WithheldOutputsAreReportedLost) {                                                       \
     /* out_ready held low: the DUT fills up and stops; the harness must time out and report every     \
@@ -147,4 +174,22 @@ void expect_corruption_caught(const std::string& unit, const std::string& hex, s
   TEST(Suite, CorruptedExpectedValueIsCaught) {                                                       \
     fxr::tb::expect_corruption_caught<Ports>(unit, fxr::tb::source_path("vectors/" unit "/" unit ".hex"), \
                                              17, CORRUPT_FIELD, CORRUPT_BIT);                         \
+  }
+
+// The tests of one unit at another parameter set: CONFIG_JSON (tb/variants/<unit>/<name>.json) is
+// the configuration the variant was verilated from (its own fxr_config_pkg) and the model's.
+#define FXR_VARIANT_TESTS(Suite, Ports, unit, name, CONFIG_JSON)                                      \
+  TEST(Suite, RtlMatchesModelOnDirectedAndRandomVectors) {                                            \
+    const auto r = fxr::tb::run_generated<Ports>(unit, unit "_" name "_generated",                    \
+                                                 fxr::load_config(CONFIG_JSON), 20000);               \
+    EXPECT_TRUE(r.passed());                                                                          \
+  }                                                                                                   \
+  TEST(Suite, RtlMatchesModelOnRandomInputs) {                                                        \
+    const auto r = fxr::tb::run_lockstep<Ports>(unit, unit "_" name "_lockstep", 200000,              \
+                                                fxr::tb::kLockStepSeed, {}, fxr::load_config(CONFIG_JSON)); \
+    EXPECT_TRUE(r.passed());                                                                          \
+  }                                                                                                   \
+  TEST(Suite, LatencyAndThroughputMatchTheCostModel) {                                                \
+    fxr::tb::expect_latency_and_throughput<Ports>(unit, unit "_" name "_throughput",                  \
+                                                  fxr::load_config(CONFIG_JSON));                     \
   }
