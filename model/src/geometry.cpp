@@ -40,19 +40,24 @@ GeomOutcome geometry(const Config& cfg, const DrawState& st, const ClipTriangle&
   if (!gb.valid) return GeomOutcome::RejectedRange;
   const uint32_t oc0 = outcode(gb, in[0]), oc1 = outcode(gb, in[1]), oc2 = outcode(gb, in[2]);
   if (oc0 & oc1 & oc2) return GeomOutcome::CulledOutside;  // trivial reject: all outside one plane
-  ClipPolygon poly;
-  if ((oc0 | oc1 | oc2) == 0) {  // trivial accept: all inside every plane
+  if ((oc0 | oc1 | oc2) == 0) {  // trivial accept: all inside every plane, no clipper
     ++stats.prims_trivial_accept;
-    poly.n = 3;
-    for (int i = 0; i < 3; ++i) poly.v[i] = in[i];
-  } else {
-    ++stats.prims_clipped;
-    poly = clip_triangle(gb, clip_widths(cfg, nv), in);
-    stats.clip_vertices_created += (uint64_t)poly.created;
-    if (poly.overflow) return GeomOutcome::RejectedRange;  // internal bound; not reachable from float32
-    if (poly.n == 0) return GeomOutcome::CulledOutside;
-    stats.clip_triangles_out += (uint64_t)(poly.n - 2);
+    out.emplace_back();
+    SetupTriangle& t = out.back();
+    t.prim = prim;
+    for (int i = 0; i < 3; ++i)
+      if (project_vertex(cfg, st, in[i], t.v[i]) != ProjectStatus::Ok) {
+        out.pop_back();
+        return GeomOutcome::RejectedRange;
+      }
+    return GeomOutcome::Emitted;
   }
+  ++stats.prims_clipped;
+  const ClipPolygon poly = clip_triangle(gb, clip_widths(cfg, nv), in);
+  stats.clip_vertices_created += (uint64_t)poly.created;
+  if (poly.overflow) return GeomOutcome::RejectedRange;  // internal bound; not reachable from float32
+  if (poly.n == 0) return GeomOutcome::CulledOutside;
+  stats.clip_triangles_out += (uint64_t)(poly.n - 2);
 
   // Stages 3 + 4 once per polygon vertex (shared by the fan's triangles).
   SetupVertex sv[kClipMaxPolyVerts];
