@@ -23,16 +23,6 @@ ClipVertex vtx(float x, float y, float z, float w) {
   return v;
 }
 
-DrawState state(int w, int h, int x0 = 0, int y0 = 0, int nv = 0) {
-  DrawState st;
-  st.viewport_x = x0;
-  st.viewport_y = y0;
-  st.viewport_w = w;
-  st.viewport_h = h;
-  st.num_varyings = nv;
-  return st;
-}
-
 ClipTriangle good() {
   ClipTriangle t;
   t.v[0] = vtx(-0.5f, -0.5f, 0.5f, 1);

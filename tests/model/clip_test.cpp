@@ -25,16 +25,6 @@ ClipVertex vtx(double x, double y, double z, double w) {
   return v;
 }
 
-DrawState state(int w, int h, int x0 = 0, int y0 = 0, int nv = 0) {
-  DrawState st;
-  st.viewport_x = x0;
-  st.viewport_y = y0;
-  st.viewport_w = w;
-  st.viewport_h = h;
-  st.num_varyings = nv;
-  return st;
-}
-
 struct Counts {
   int diffs = 0;
   RasterStats stats;

@@ -20,6 +20,17 @@ namespace georef {
 
 using namespace fxr;
 
+// A draw state with the given viewport and varying count (test helper).
+inline DrawState state(int w, int h, int x0 = 0, int y0 = 0, int nv = 0) {
+  DrawState st;
+  st.viewport_x = x0;
+  st.viewport_y = y0;
+  st.viewport_w = w;
+  st.viewport_h = h;
+  st.num_varyings = nv;
+  return st;
+}
+
 inline mpq_class q_of(const FxFloat& f) {
   mpz_class s;
   mpz_import(s.get_mpz_t(), 1, 1, sizeof f.sig, 0, 0, &f.sig);

@@ -25,16 +25,6 @@ ClipVertex vtx(double xn, double yn, double zn, double w) {
   return v;
 }
 
-DrawState state(int w, int h, int x0 = 0, int y0 = 0, int nv = 0) {
-  DrawState st;
-  st.viewport_x = x0;
-  st.viewport_y = y0;
-  st.viewport_w = w;
-  st.viewport_h = h;
-  st.num_varyings = nv;
-  return st;
-}
-
 // Random triangle inside the view volume (trivially accepted), with nv varyings.
 ClipTriangle random_inside(std::mt19937_64& rng, int nv, double wmin = 0.1, double wmax = 100.0) {
   std::uniform_real_distribution<double> u(-1, 1), z(0, 1), lw(std::log(wmin), std::log(wmax)),
