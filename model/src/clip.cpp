@@ -171,6 +171,28 @@ BigU big_shl(const BigU& a, int s, bool* of) {
   return r;
 }
 
+// Number of trailing zero bits (a ≠ 0).
+int big_ctz(const BigU& a) {
+  int i = 0;
+  while (a.l[i] == 0) ++i;
+  return i * kLimbBits + __builtin_ctzll(a.l[i]);
+}
+
+// a >> s, dropping the low bits (callers shift out zeros only).
+BigU big_shr(const BigU& a, int s) {
+  BigU r;
+  const int w = s / kLimbBits, b = s % kLimbBits;
+  for (int i = w; i < a.n; ++i) {
+    r.l[i - w] = b ? (a.l[i] >> b) : a.l[i];
+    if (b && i + 1 < a.n) r.l[i - w] |= a.l[i + 1] << (kLimbBits - b);
+  }
+  r.n = std::max(0, a.n - w);
+  r.trim();
+  return r;
+}
+
+u128 big_to_u128(const BigU& a) { return ((u128)a.l[1] << kLimbBits) | a.l[0]; }
+
 void big_shr1(BigU& a) {
   for (int i = 0; i < a.n; ++i) a.l[i] = (a.l[i] >> 1) | (i + 1 < a.n ? a.l[i + 1] << (kLimbBits - 1) : 0);
   a.trim();
@@ -311,17 +333,28 @@ FxFloat div_round(const Dy& p, const Dy& q, int bits, bool* of) {
   const int k = bits + 2 - (mp - mq);
   BigU a = k > 0 ? big_shl(p.m, k, of) : p.m;
   BigU b = k < 0 ? big_shl(q.m, -k, of) : q.m;
-  const int qbits = bits + 3;
-  b = big_shl(b, qbits - 1, of);
+  // Common trailing zeros change neither the quotient nor whether the remainder is zero.
+  const int tz = std::min(big_ctz(a), big_ctz(b));
+  a = big_shr(a, tz);
+  b = big_shr(b, tz);
   u128 quo = 0;
-  for (int i = qbits - 1; i >= 0; --i) {
-    if (big_cmp(a, b) >= 0) {
-      a = big_sub(a, b);
-      quo |= ((u128)1) << i;
+  bool sticky;
+  if (a.n <= 2 && b.n <= 2) {  // fast path: both fit 128 bits
+    const u128 a2 = big_to_u128(a), b2 = big_to_u128(b);
+    quo = a2 / b2;
+    sticky = a2 % b2 != 0;
+  } else {  // restoring division, one quotient bit per step
+    const int qbits = bits + 3;
+    b = big_shl(b, qbits - 1, of);
+    for (int i = qbits - 1; i >= 0; --i) {
+      if (big_cmp(a, b) >= 0) {
+        a = big_sub(a, b);
+        quo |= ((u128)1) << i;
+      }
+      big_shr1(b);
     }
-    big_shr1(b);
+    sticky = a.n != 0;
   }
-  const bool sticky = a.n != 0;
   // value = (quo + rem/b)·2^(p.e − q.e − k); (quo << 1 | sticky) keeps a sticky bit below the
   // guard bits, so rounding it to `bits` is the correct RNE of the exact quotient.
   const Normalized nm = normalize((quo << 1) | (sticky ? 1 : 0), bits, Round::HalfEven);
