@@ -16,6 +16,10 @@ struct RasterConfig {
   // 16 → ±32768 px, D3D11's 16.8 range. Edge coefficients need window_int_bits + subpixel_bits + 1
   // bits, edge values about twice that (ANCHORS: 25 and 50 bits at 16.8).
   int window_int_bits = 16;
+  // Significand bits of the clipper's new x_c, y_c, z_c and varyings (w_c uses recip.in_sig_bits).
+  // 32: 8 bits beyond float32 so the ½-ulp rounding of a clipped x_c moves the window
+  // coordinate by ≤ 2^15 px · 2^−32 ≪ one 2^−8 subpixel (docs/pipeline.md, stage 2).
+  int clip_sig_bits = 32;
   // Fraction bits of the per-vertex depth z_c / w_c ∈ [0, 1] handed to setup.
   int z_frac_bits = 32;
   // Significand bits of the per-vertex v · (1/w) handed to setup.
@@ -30,6 +34,7 @@ struct RasterConfig {
   void visit(V& v) {
     v.integer("subpixel_bits", subpixel_bits, 0, 12, "fraction bits of snapped window x, y");
     v.integer("window_int_bits", window_int_bits, 8, 20, "signed integer bits of window x, y (guard band included)");
+    v.integer("clip_sig_bits", clip_sig_bits, 16, 60, "significand bits of clipper-made x, y, z and varyings");
     v.integer("z_frac_bits", z_frac_bits, 16, 40, "fraction bits of per-vertex depth z/w in [0,1]");
     v.integer("varying_sig_bits", varying_sig_bits, 8, 40, "significand bits of per-vertex v/w");
     v.integer("varying_out_sig_bits", varying_out_sig_bits, 8, 32, "significand bits of output varyings");
