@@ -130,8 +130,23 @@ inline int64_t fit_width(i128 x, int width, bool is_signed, Overflow o, bool* ov
 //   value = x · 2^−src_frac; result = fit(round(value · 2^dst.frac)).
 //   Rounding by dst.round, overflow by dst.overflow; exact when no bits are dropped and the
 //   result fits. This is sc_fixed's assignment from a wider fixed-point value.
+//   Any x and any frac difference: when the destination has more fraction bits than the
+//   source by so much that x · 2^(dst.frac − src_frac) leaves i128, the value certainly
+//   leaves the ≤ 64-bit destination too: Saturate clamps by sign, Wrap keeps the low bits
+//   (computed modulo 2^128, which preserves them).
 inline int64_t convert(i128 x, int src_frac, const FxFormat& dst, bool* overflowed = nullptr) {
-  const i128 q = shift_round(x, src_frac - dst.frac, dst.round);
+  const int shift = src_frac - dst.frac;
+  if (shift < 0 && x != 0) {
+    const int up = -shift;
+    const int headroom = clz128((u128)(x < 0 ? ~x : x)) - 1;  // redundant sign bits of x
+    if (up > headroom) {  // |x · 2^up| ≥ 2^126: out of every destination range
+      if (overflowed) *overflowed = true;
+      if (dst.overflow == Overflow::Saturate) return x < 0 ? dst.min_code() : dst.max_code();
+      const u128 low = up >= 128 ? 0 : ((u128)x << up);
+      return fit_width((i128)low_bits(low, dst.width), dst.width, dst.is_signed, Overflow::Wrap);
+    }
+  }
+  const i128 q = shift_round(x, shift, dst.round);
   return fit_width(q, dst.width, dst.is_signed, dst.overflow, overflowed);
 }
 
