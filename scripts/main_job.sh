@@ -7,4 +7,5 @@ mkdir -p "$OUT"
 FXR=build/app/fxraster
 "$FXR" config --emit-json "$OUT/config.json" --emit-md "$OUT/config.md"
 for u in recip div; do "$FXR" vectors "$u" --seed 1 --count 100000 --out "$OUT/vectors/$u"; done
+for u in recip div; do "$FXR" sweep "$u" --quick --out "$OUT/sweep/$u"; done  # error vs cost: report.md + plots
 echo "main job: wrote $OUT/"
