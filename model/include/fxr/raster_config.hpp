@@ -23,6 +23,12 @@ struct RasterConfig {
   // Significand bits of the perspective-correct varyings leaving the unit (float32: 24).
   int varying_out_sig_bits = 24;
   DepthFormat depth_format = DepthFormat::D24;
+  // Width of the per-triangle block-aligned integers of 1/w and of each v/w (interpolators,
+  // stage 7): the largest of the three vertex values has its msb at bit interp_block_bits − 1,
+  // the others are shifted right to the same block exponent (RNE; exact while the three lead
+  // exponents differ by at most interp_block_bits − significand bits, i.e. w ratios up to
+  // 2^16 at the defaults 40 and 24). docs/pipeline.md, stage 7.
+  int interp_block_bits = 40;
 
   int depth_bits() const { return depth_format == DepthFormat::D16 ? 16 : 24; }
 
@@ -34,6 +40,7 @@ struct RasterConfig {
     v.integer("varying_sig_bits", varying_sig_bits, 8, 40, "significand bits of per-vertex v/w");
     v.integer("varying_out_sig_bits", varying_out_sig_bits, 8, 32, "significand bits of output varyings");
     v.choice("depth_format", depth_format, {"d16", "d24"}, "depth buffer format (unorm)");
+    v.integer("interp_block_bits", interp_block_bits, 16, 62, "width of block-aligned per-triangle 1/w and v/w integers");
   }
 };
 
