@@ -129,6 +129,28 @@ fxr::Image depth_image(const fxr::FrameOutput& fo, uint32_t clear_code, uint32_t
   return img;
 }
 
+// Error heat map: log10 of the texel error of the visible fragment, 10^-6 (dark blue) …
+// 1 texel (red) and beyond (white); no fragment: black.
+fxr::Image heat_image(const std::vector<double>& heat, int w, int h) {
+  fxr::Image img(w, h, fxr::pack_rgba(0, 0, 0));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double e = heat[(size_t)y * w + x];
+      if (e < 0) continue;
+      if (e >= 1) {
+        img.at(x, y) = fxr::pack_rgba(255, 255, 255);
+        continue;
+      }
+      const double t = std::clamp((std::log10(std::max(e, 1e-12)) + 6.0) / 6.0, 0.0, 1.0);  // 0 … 1
+      // blue → cyan → green → yellow → red
+      const double r = std::clamp(4 * t - 2, 0.0, 1.0), g = t < 0.75 ? std::clamp(4 * t - 0.5, 0.0, 1.0) : 4 - 4 * t,
+                   b = std::clamp(1.5 - 4 * t, 0.0, 1.0);
+      img.at(x, y) = fxr::pack_rgba((uint32_t)std::lround(40 + 215 * r), (uint32_t)std::lround(40 + 215 * g),
+                                    (uint32_t)std::lround(60 + 195 * b));
+    }
+  return img;
+}
+
 fxr::Image side_by_side(const fxr::Image& a, const fxr::Image& b) {
   const int gap = 8;
   fxr::Image img(a.width + gap + b.width, std::max(a.height, b.height), fxr::pack_rgba(255, 255, 255));
@@ -209,6 +231,7 @@ struct Errors {
   uint64_t ref_invalid = 0;                          // reference undefined at the fragment
   uint64_t var_zero_ref = 0;                         // reference value 0: no ulp
   json worst = json::object();
+  std::vector<double> heat;                          // per pixel: error of the visible fragment (texels; −1: none)
 };
 
 Errors compare_values(const fxr::Scene& sc, const fxr::FrameOutput& fo) {
@@ -217,7 +240,12 @@ Errors compare_values(const fxr::Scene& sc, const fxr::FrameOutput& fo) {
   const double dmax = std::ldexp(1.0, sc.config.raster.depth_bits()) - 1;
   Errors e;
   e.var_ulp.resize(nv), e.var_abs.resize(nv), e.var_texel.resize(nv), e.texel_diff.assign(nv, 0);
+  e.heat.assign((size_t)sc.state.viewport_w * sc.state.viewport_h, -1.0);
   for (const auto& f : fo.fragments) {
+    const int hx = f.x - sc.state.viewport_x, hy = f.y - sc.state.viewport_y;
+    double* heat = hx >= 0 && hy >= 0 && hx < sc.state.viewport_w && hy < sc.state.viewport_h
+                       ? &e.heat[(size_t)hy * sc.state.viewport_w + hx] : nullptr;
+    if (heat) *heat = 0;
     if (f.prim >= sc.tris.size()) continue;
     const fxr::RefSample r = fxr::reference_at_pixel(sc.state, sc.tris[f.prim], nv, f.x + 0.5, f.y + 0.5);
     if (!r.valid) {
@@ -245,6 +273,7 @@ Errors compare_values(const fxr::Scene& sc, const fxr::FrameOutput& fo) {
       if (k == sc.v_varying) size = sc.texture.image.height;
       if (size) {
         e.var_texel[k].add(err * size);
+        if (heat) *heat = std::max(*heat, err * size);
         if (fxr::texel_index(f.var[k], size, sc.texture.wrap) != fxr::texel_index_ref(ref, size, sc.texture.wrap))
           ++e.texel_diff[k];
       }
@@ -442,6 +471,7 @@ int run(const Opts& o) {
   const fxr::RefFrame rf_cov = fxr::run_reference(nod, sc.tris);
   const Coverage cov = compare_coverage(fo_cov.fragments, rf_cov.fragments);
   const Errors err = compare_values(sc, fo);
+  if (sc.u_varying >= 0) fxr::write_png(o.out + "/error_heatmap.png", heat_image(err.heat, sc.state.viewport_w, sc.state.viewport_h));
   const Spot spot = spot_checks(sc, fo, o.spot_checks);
   const ErrStat snap = snap_errors(sc);
 
@@ -500,6 +530,9 @@ int run(const Opts& o) {
     md << "| " << other_mode["interp"].get<std::string>() << " interpolation (seed 000: "
        << (o.affine ? "the right image" : "the wrong image") << ") | [" << other_mode["image"].get<std::string>() << "]("
        << other_mode["image"].get<std::string>() << ") |\n| perspective ‖ affine | [side_by_side.png](side_by_side.png) |\n";
+  if (sc.u_varying >= 0)
+    md << "| texel error of u, v vs the double reference (log scale: dark blue 1e-6 … red 1 texel, white ≥ 1) | "
+          "[error_heatmap.png](error_heatmap.png) |\n";
   md << "\nFragment dump: [fragments.csv](fragments.csv) (columns declared in [fragments.json](fragments.json)); "
         "statistics: [stats.json](stats.json); this report as JSON: [report.json](report.json).\n\n";
   md << "## Primitives\n\n| counter | model | double reference |\n|---|---|---|\n";
