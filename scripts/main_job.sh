@@ -8,4 +8,5 @@ FXR=build/app/fxraster
 "$FXR" config --emit-json "$OUT/config.json" --emit-md "$OUT/config.md"
 for u in recip div; do "$FXR" vectors "$u" --seed 1 --count 100000 --out "$OUT/vectors/$u"; done
 for u in recip div; do "$FXR" sweep "$u" --quick --out "$OUT/sweep/$u"; done  # error vs cost: report.md + plots
+"$FXR" render --default --quiet --out "$OUT/render"  # image, depth, fragments, report.md
 echo "main job: wrote $OUT/"

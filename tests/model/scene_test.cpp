@@ -270,3 +270,19 @@ TEST(Scene, ExampleScenesUnderScenesParse) {
     EXPECT_NO_THROW(load_scene(p)) << p;
   }
 }
+
+TEST(Scene, PngTextureLoadsRelativeToTheSceneAndMissingOneNamesTheField) {
+  const std::string dir = ::testing::TempDir();
+  Image img(4, 2, pack_rgba(9, 8, 7));
+  img.at(3, 1) = pack_rgba(200, 100, 50);
+  write_png(dir + "/fxr_scene_tex.png", img);
+  const std::string text = R"({"version": 1, "viewport": {"width": 8, "height": 8},
+      "texture": {"kind": "png", "path": "fxr_scene_tex.png", "wrap": "clamp"}, "objects": []})";
+  const Scene s = parse_scene(text, "scene.json", dir);
+  EXPECT_EQ(s.texture.image.width, 4);
+  EXPECT_EQ(s.texture.image.at(3, 1), pack_rgba(200, 100, 50));
+  EXPECT_EQ(s.texture.wrap, WrapMode::Clamp);
+  std::remove((dir + "/fxr_scene_tex.png").c_str());
+  EXPECT_ERROR_HAS(R"({"version": 1, "viewport": {"width": 8, "height": 8},
+      "texture": {"kind": "png", "path": "none.png"}, "objects": []})", "scene.json: /texture/path: ");
+}
