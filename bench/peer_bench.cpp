@@ -22,6 +22,9 @@
 #include "fxr/float_raster.hpp"
 #include "fxr/peer_osmesa.hpp"
 #include "fxr/peer_scenes.hpp"
+#include "fxr/geometry.hpp"
+#include "fxr/raster.hpp"
+#include "fxr/raster_unit.hpp"
 
 using namespace fxr;
 using namespace fxr::peer;
@@ -88,6 +91,52 @@ void BM_Llvmpipe(benchmark::State& state) {
   state.counters["fragments"] = (double)frags;
 }
 
+void BM_Model(benchmark::State& state) {
+  const PeerScene& s = scene((int)state.range(0), (int)state.range(1));
+  const Config cfg;
+  uint64_t frags = 0;
+  for (auto _ : state) {
+    const FrameOutput out = run_raster_unit(cfg, s.st, s.tris);
+    frags = out.stats.fragments_generated;
+    benchmark::DoNotOptimize(out.fragments.data());
+  }
+  state.SetItemsProcessed((int64_t)state.iterations() * (int64_t)frags);
+  state.counters["fragments"] = (double)frags;
+}
+
+// The model streaming its fragments into an image (FragmentSink), as the float rasterizer and
+// llvmpipe write a framebuffer, instead of keeping a std::vector<Fragment> per frame.
+struct ImageSink : FragmentSink {
+  int width = 0, nv = 0;
+  std::vector<FxFloat> var;  // nv per pixel
+  void emit(const Fragment& f) override {
+    FxFloat* out = &var[((size_t)f.y * (size_t)width + (size_t)f.x) * (size_t)nv];
+    for (int k = 0; k < nv; ++k) out[k] = f.var[k];
+  }
+};
+
+void BM_ModelStream(benchmark::State& state) {
+  const PeerScene& s = scene((int)state.range(0), (int)state.range(1));
+  const Config cfg;
+  ImageSink sink;
+  sink.width = s.st.viewport_x + s.st.viewport_w;
+  sink.nv = s.st.num_varyings;
+  sink.var.assign((size_t)sink.width * (size_t)(s.st.viewport_y + s.st.viewport_h) * (size_t)sink.nv, FxFloat{});
+  FrameOutput f;
+  std::vector<SetupTriangle> pieces;
+  for (auto _ : state) {
+    frame_begin(cfg, s.st, f);
+    for (size_t p = 0; p < s.tris.size(); ++p) {
+      pieces.clear();
+      if (geometry(cfg, s.st, s.tris[p], (uint32_t)p, pieces, f.stats) != GeomOutcome::Emitted) continue;
+      for (const SetupTriangle& t : pieces) raster_triangle_to(cfg, s.st, t, f, &sink);
+    }
+    benchmark::DoNotOptimize(sink.var.data());
+  }
+  state.SetItemsProcessed((int64_t)state.iterations() * (int64_t)f.stats.fragments_generated);
+  state.counters["fragments"] = (double)f.stats.fragments_generated;
+}
+
 void scene_args(benchmark::internal::Benchmark* b) {
   for (int id : {kBunny, kPlane})
     for (int nv : {0, 2}) b->Args({id, nv});
@@ -96,6 +145,8 @@ void scene_args(benchmark::internal::Benchmark* b) {
   b->ArgNames({"scene", "varyings"})->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 }
 
+BENCHMARK(BM_Model)->Apply(scene_args);
+BENCHMARK(BM_ModelStream)->Apply(scene_args);
 BENCHMARK(BM_Float)->Apply(scene_args);
 BENCHMARK(BM_Llvmpipe)->Apply(scene_args);
 
