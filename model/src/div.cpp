@@ -60,9 +60,15 @@ inline bool special(const DivConfig& c, uint64_t n, uint64_t d, DivSig* out) {
 // Round to nearest even from a truncated quotient q = floor(X) and its exact remainder
 // r ∈ [0, b): up when 2r > b, or 2r == b and q is odd. This is the unit's only rounding.
 // A carry out of qb bits renormalises (sig = 2^(qb−1), exp_adj + 1).
-inline DivSig round_rne(const DivConfig& c, u128 q, u128 r, uint64_t b, int k) {
+// Ties-to-even increment of a floor quotient q with remainder r ∈ [0, den): 2r > den, or a
+// tie with q odd. Shared by the quotient rounding and the seed-table generator.
+inline bool rne_up(u128 q, u128 r, u128 den) {
   const u128 two_r = r << 1;
-  if (two_r > b || (two_r == b && (q & 1))) ++q;
+  return two_r > den || (two_r == den && (q & 1));
+}
+
+inline DivSig round_rne(const DivConfig& c, u128 q, u128 r, uint64_t b, int k) {
+  if (rne_up(q, r, b)) ++q;
   DivSig s{(uint64_t)q, -k};
   if (q == pow2(c.quot_bits)) s = {(uint64_t)pow2(c.quot_bits - 1), 1 - k};
   return s;
@@ -131,7 +137,7 @@ std::vector<uint32_t> div_seed_table(const DivConfig& c) {
     const u128 den = pow2(si + 1) + 2 * i + 1;
     u128 q = num / den;
     const u128 r = num % den;
-    if (2 * r > den || (2 * r == den && (q & 1))) ++q;
+    if (rne_up(q, r, den)) ++q;
     u128 e = q - pow2(sb);                          // drop the implicit leading one
     if (e >= pow2(sb)) e = pow2(sb) - 1;            // i = 0 may round up to exactly 1.0: clamp
     t[i] = (uint32_t)e;
