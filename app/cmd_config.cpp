@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "command.hpp"
-#include "fxr/config.hpp"
+#include "model/config/config.hpp"
 
 namespace {
 

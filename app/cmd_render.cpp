@@ -14,12 +14,12 @@
 #include <tuple>
 
 #include "command.hpp"
-#include "fxr/config.hpp"
-#include "fxr/geometry.hpp"
-#include "fxr/raster_unit.hpp"
-#include "fxr/reference.hpp"
-#include "fxr/scene.hpp"
-#include "fxr/texture.hpp"
+#include "model/config/config.hpp"
+#include "model/unit/geometry.hpp"
+#include "model/unit/raster_unit.hpp"
+#include "reference/reference.hpp"
+#include "frontend/scene.hpp"
+#include "frontend/texture.hpp"
 
 namespace {
 

@@ -17,10 +17,10 @@
 #include <sstream>
 
 #include "command.hpp"
-#include "fxr/config.hpp"
-#include "fxr/div.hpp"
-#include "fxr/recip.hpp"
-#include "report.hpp"
+#include "model/config/config.hpp"
+#include "model/arith/div.hpp"
+#include "model/stages/recip.hpp"
+#include "analysis/sweep_table.hpp"
 
 namespace fs = std::filesystem;
 

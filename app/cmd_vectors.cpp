@@ -4,8 +4,8 @@
 #include <iostream>
 
 #include "command.hpp"
-#include "fxr/config.hpp"
-#include "fxr/vectors.hpp"
+#include "model/config/config.hpp"
+#include "model/vectors/vectors.hpp"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "command.hpp"
-#include "fxr/param.hpp"
+#include "model/config/param.hpp"
 
 namespace fxr::app {
 

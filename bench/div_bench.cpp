@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "fxr/div.hpp"
+#include "model/arith/div.hpp"
 
 using namespace fxr;
 

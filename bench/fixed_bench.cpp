@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "fxr/fixed.hpp"
+#include "model/arith/fixed.hpp"
 
 int sc_main(int, char*[]) { return 0; }  // libsystemc's main() wants it; ours is below
 

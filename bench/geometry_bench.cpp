@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "fxr/geometry.hpp"
+#include "model/unit/geometry.hpp"
 
 using namespace fxr;
 

@@ -1,5 +1,5 @@
 // Model speed against two baselines measured in the same run (issue #3, SPEC §9):
-//   - float:    the plain float32 rasterizer (fxr_peer, fxr/float_raster.hpp), one thread;
+//   - float:    the plain float32 rasterizer (fxr_peer, reference/float_raster.hpp), one thread;
 //   - llvmpipe: Mesa through OSMesa with LP_NUM_THREADS=0 (rasterises in the calling thread),
 //               context creation, shader compilation and vertex upload excluded; each iteration
 //               is clear + draw + glFinish;
@@ -19,12 +19,12 @@
 #include <string>
 #include <vector>
 
-#include "fxr/float_raster.hpp"
-#include "fxr/peer_osmesa.hpp"
-#include "fxr/peer_scenes.hpp"
-#include "fxr/geometry.hpp"
-#include "fxr/raster.hpp"
-#include "fxr/raster_unit.hpp"
+#include "reference/float_raster.hpp"
+#include "reference/peer/peer_osmesa.hpp"
+#include "reference/peer/peer_scenes.hpp"
+#include "model/unit/geometry.hpp"
+#include "model/unit/backend.hpp"
+#include "model/unit/raster_unit.hpp"
 
 using namespace fxr;
 using namespace fxr::peer;

@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "fxr/raster.hpp"
+#include "model/unit/backend.hpp"
 
 using namespace fxr;
 

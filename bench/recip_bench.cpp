@@ -7,7 +7,7 @@
 
 #include <chrono>
 
-#include "fxr/recip.hpp"
+#include "model/stages/recip.hpp"
 
 namespace {
 

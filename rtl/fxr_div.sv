@@ -1,5 +1,5 @@
 // fxr_div: per-pixel significand divider, stage 9 (v = (v/w) / (1/w)).
-// Model: fxr::div_sig (model/include/fxr/div.hpp); docs/arith.md "# Divider".
+// Model: fxr::div_sig (model/arith/div.hpp); docs/arith.md "# Divider".
 //
 // Function (every algorithm, round to nearest even):
 //   num in [2^(NumBits-1), 2^NumBits), den in [2^(DenBits-1), 2^DenBits) (msb set):

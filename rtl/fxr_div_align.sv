@@ -1,5 +1,5 @@
 // fxr_div_align: exact operand alignment shared by both divider algorithms (combinational).
-// Mirrors align() in model/src/div.cpp: a = num << (AlignBits - NumBits),
+// Mirrors align() in model/arith/div.cpp: a = num << (AlignBits - NumBits),
 // b = den << (AlignBits - DenBits), AlignBits = max(NumBits, DenBits). No bits are lost.
 module fxr_div_align #(
   parameter int NumBits   = 32,

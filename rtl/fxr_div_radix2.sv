@@ -1,5 +1,5 @@
 // fxr_div_radix2: radix-2 non-restoring significand divider, pipelined or iterative.
-// Implements fxr::div_sig_radix2_steps (model/src/div.cpp) bit for bit; ports as fxr_div.
+// Implements fxr::div_sig_radix2_steps (model/arith/div.cpp) bit for bit; ports as fxr_div.
 //
 // Schedule 0 (pipelined): pre -> Stages recurrence registers (BitsPerStage steps each) -> post.
 //   One result per clock; the whole pipeline stalls while out_valid_o && !out_ready_i.

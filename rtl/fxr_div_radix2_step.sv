@@ -1,6 +1,6 @@
 // fxr_div_radix2_step: one radix-2 non-restoring recurrence step (combinational).
 //
-// Mirrors the loop body of fxr::div_sig_radix2_steps (model/src/div.cpp):
+// Mirrors the loop body of fxr::div_sig_radix2_steps (model/arith/div.cpp):
 //   r >= 0: r' = 2r - b, digit +1 (p' = {p, 1});   r < 0: r' = 2r + b, digit -1 (p' = {p, 0}).
 // Invariant a'*2^i = Q_i*b + r_i with r_i in [-b, b): r' stays in RemBits signed bits (the
 // intermediate 2r fits as |r| < b < 2^AlignBits). en_i = 0 passes r and p through unchanged

@@ -1,5 +1,5 @@
 // fxr_div_recip_mul: reciprocal-multiply significand divider with a remainder correction,
-// fully pipelined (one result per clock). Implements fxr::div_sig_recip_mul (model/src/div.cpp)
+// fully pipelined (one result per clock). Implements fxr::div_sig_recip_mul (model/arith/div.cpp)
 // bit for bit; ports as fxr_div.
 //
 // Register stages (latency = 2 * NrSteps + 4 = fxr::div_cost):

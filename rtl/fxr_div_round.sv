@@ -1,7 +1,7 @@
 // fxr_div_round: round to nearest even from an exact floor quotient and remainder
 // (combinational), shared by every divider algorithm.
 //
-// Mirrors round_rne in model/src/div.cpp. Inputs: q_i = floor(X) in [2^(QuotBits-1), 2^QuotBits);
+// Mirrors round_rne in model/arith/div.cpp. Inputs: q_i = floor(X) in [2^(QuotBits-1), 2^QuotBits);
 // with r in [0, b) the exact remainder (X*b = q*b + r), the sign and zero flags of t = 2r - b
 // (t_neg_i, t_zero_i; the caller forms t, for radix2 it is one more recurrence step); k_i = 1
 // when the normalised numerator was below the divisor (exp_adj -1 before rounding).

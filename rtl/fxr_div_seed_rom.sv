@@ -1,5 +1,5 @@
 // fxr_div_seed_rom: the recip_mul seed table (combinational ROM), computed at elaboration by a
-// constant function that is the same formula as fxr::div_seed_table (model/src/div.cpp):
+// constant function that is the same formula as fxr::div_seed_table (model/arith/div.cpp):
 //   entry i = RNE(2^(SeedBits+1) / (1 + (i + 1/2)*2^-SeedIndexBits)) - 2^SeedBits,
 // clamped to 2^SeedBits - 1 (only i = 0 can round up to exactly 1.0). The implicit leading one
 // is added back by the caller: y0 = (2^SeedBits + entry) * 2^-(SeedBits+1) in (1/2, 1].

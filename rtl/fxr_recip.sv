@@ -1,5 +1,5 @@
 // fxr_recip: reciprocal unit, stage 3 (1/w per vertex).
-// Model: fxr::RecipUnit / fxr::recip (model/include/fxr/recip.hpp); docs/arith.md "# Reciprocal unit".
+// Model: fxr::RecipUnit / fxr::recip (model/stages/recip.hpp); docs/arith.md "# Reciprocal unit".
 //
 // Function (bit-exact to the model):
 //   w = (-1)^in_neg_i * in_sig_i * 2^(in_exp_i - (InSigBits-1)), in_sig_i in [2^(InSigBits-1), 2^InSigBits)
@@ -32,7 +32,7 @@
 //   (in_ready_o = out_ready_i | ~out_valid_o); no result is lost or duplicated.
 //
 // The seed table is computed at elaboration by seed_entry(), the same minimax rule and integer
-// arithmetic as fxr::recip_seed_table (model/src/recip.cpp); a Verilator check compares the two.
+// arithmetic as fxr::recip_seed_table (model/stages/recip.cpp); a Verilator check compares the two.
 module fxr_recip #(
   parameter int InSigBits     = fxr_config_pkg::RecipInSigBits,
   parameter int OutSigBits    = fxr_config_pkg::RecipOutSigBits,

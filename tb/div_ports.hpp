@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "fxr/config.hpp"
-#include "fxr/div.hpp"
-#include "fxr/vectors.hpp"
+#include "model/config/config.hpp"
+#include "model/arith/div.hpp"
+#include "model/vectors/vectors.hpp"
 
 template <class D>
 struct DivPorts {

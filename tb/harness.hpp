@@ -33,7 +33,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "fxr/vectors.hpp"
+#include "model/vectors/vectors.hpp"
 
 namespace fxr::tb {
 

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "fxr/config.hpp"
-#include "fxr/recip.hpp"
-#include "fxr/vectors.hpp"
+#include "model/config/config.hpp"
+#include "model/stages/recip.hpp"
+#include "model/vectors/vectors.hpp"
 
 template <class D>
 struct RecipPorts {

@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "fxr/setup.hpp"
-#include "fxr/traverse.hpp"
+#include "model/stages/setup.hpp"
+#include "model/stages/traverse.hpp"
 
 using namespace fxr;
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <random>
 
-#include "fxr/depth.hpp"
+#include "model/stages/depth.hpp"
 #include "raster_ref.hpp"
 
 using namespace fxr;

@@ -6,8 +6,8 @@
 #include <set>
 #include <string>
 
-#include "fxr/config.hpp"
-#include "fxr/div.hpp"
+#include "model/config/config.hpp"
+#include "model/arith/div.hpp"
 
 using namespace fxr;
 

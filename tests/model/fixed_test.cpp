@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "fxr/fixed.hpp"
+#include "model/arith/fixed.hpp"
 
 using namespace fxr;
 

@@ -12,9 +12,9 @@
 
 #include <vector>
 
-#include "fxr/clip.hpp"
-#include "fxr/geometry.hpp"
-#include "fxr/recip.hpp"
+#include "model/stages/clip.hpp"
+#include "model/unit/geometry.hpp"
+#include "model/stages/recip.hpp"
 
 namespace georef {
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <random>
 
-#include "fxr/interp.hpp"
+#include "model/stages/interp.hpp"
 #include "raster_ref.hpp"
 
 using namespace fxr;

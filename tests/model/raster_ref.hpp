@@ -8,8 +8,8 @@
 #include <cmath>
 #include <vector>
 
-#include "fxr/fxfloat.hpp"
-#include "fxr/raster.hpp"
+#include "model/arith/fxfloat.hpp"
+#include "model/unit/backend.hpp"
 
 namespace fxr::ref {
 

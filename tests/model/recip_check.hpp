@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "fxr/recip.hpp"
+#include "model/stages/recip.hpp"
 
 namespace fxr::recip_check {
 

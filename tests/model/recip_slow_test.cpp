@@ -2,7 +2,7 @@
 // The a-priori bound (recip_cost().valid) claims: remainder → correctly rounded, none → faithful.
 #include <gtest/gtest.h>
 
-#include "fxr/recip.hpp"
+#include "model/stages/recip.hpp"
 #include "recip_check.hpp"
 
 using namespace fxr;

@@ -7,8 +7,8 @@
 #include <atomic>
 #include <thread>
 
-#include "fxr/config.hpp"
-#include "fxr/recip.hpp"
+#include "model/config/config.hpp"
+#include "model/stages/recip.hpp"
 #include "recip_check.hpp"
 
 using namespace fxr;

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fxr/reference.hpp"
+#include "reference/reference.hpp"
 
 using namespace fxr;
 

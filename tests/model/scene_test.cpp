@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fxr/scene.hpp"
+#include "frontend/scene.hpp"
 
 using namespace fxr;
 

@@ -6,7 +6,7 @@
 #include <gmpxx.h>
 #include <gtest/gtest.h>
 
-#include "fxr/texture.hpp"
+#include "frontend/texture.hpp"
 
 using namespace fxr;
 

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "fxr/vectors.hpp"
+#include "model/vectors/vectors.hpp"
 
 using namespace fxr;
 namespace fs = std::filesystem;

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "fxr/float_raster.hpp"
-#include "fxr/peer_osmesa.hpp"
-#include "fxr/peer_scenes.hpp"
-#include "fxr/raster_unit.hpp"
+#include "reference/float_raster.hpp"
+#include "reference/peer/peer_osmesa.hpp"
+#include "reference/peer/peer_scenes.hpp"
+#include "model/unit/raster_unit.hpp"
 
 using namespace fxr;
 using namespace fxr::peer;

@@ -1,4 +1,4 @@
-// fxr/fixed.hpp against SystemC's own fixed-point types (the oracle): conversion between
+// model/arith/fixed.hpp against SystemC's own fixed-point types (the oracle): conversion between
 // formats (fxr::convert), multiply (mul_wide + convert) and multiply-accumulate (fxr::mac)
 // must give bit-identical codes to sc_fix / sc_ufix / sc_fixed / sc_ufixed for every
 // quantisation mode (SC_TRN, SC_TRN_ZERO, SC_RND, SC_RND_CONV, SC_RND_INF) and overflow mode
@@ -19,7 +19,7 @@
 #include <sstream>
 #include <vector>
 
-#include "fxr/fixed.hpp"
+#include "model/arith/fixed.hpp"
 
 // libsystemc.so defines main() and calls sc_main(); these tests use the fixed-point library
 // only, from GoogleTest's main, so sc_main just has to exist for the link.

@@ -1,0 +1,245 @@
+// model/arith/fixed.hpp — the bit-exact integer primitives every stage is built from.
+//
+// Values are plain two's-complement integers (int64_t, or i128 where a product needs more
+// than 64 bits) whose meaning — width, binary point, signedness — is carried by an FxFormat.
+// Nothing here uses floating point. The operations mirror SystemC's sc_fixed quantisation
+// (SC_TRN, SC_TRN_ZERO, SC_RND, SC_RND_CONV, SC_RND_INF) and overflow (SC_WRAP, SC_SAT)
+// modes bit for bit; tests/sc/fixed_vs_sc_fixed_test.cpp proves it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace fxr {
+
+using i128 = __int128;
+using u128 = unsigned __int128;
+
+// Largest width any FxFormat may have: results are held in int64_t.
+inline constexpr int kMaxFormatBits = 64;
+
+// Quantisation (rounding) applied when low-order bits are dropped.
+enum class Round : uint8_t {
+  Trunc,        // toward −∞ (drop bits).                          sc: SC_TRN
+  TruncZero,    // toward 0.                                        sc: SC_TRN_ZERO
+  HalfUp,       // to nearest, ties toward +∞.                      sc: SC_RND
+  HalfEven,     // to nearest, ties to even (IEEE default).         sc: SC_RND_CONV
+  HalfAway,     // to nearest, ties away from 0.                    sc: SC_RND_INF
+};
+
+// What happens when a value does not fit the destination width.
+enum class Overflow : uint8_t {
+  Wrap,      // keep the low bits (two's complement wrap).          sc: SC_WRAP
+  Saturate,  // clamp to the most positive / most negative code.    sc: SC_SAT
+};
+
+const char* to_string(Round r);
+const char* to_string(Overflow o);
+
+// A fixed-point format: `width` bits in all, `frac` of them after the binary point
+// (frac may be negative or exceed width, as in sc_fixed), two's complement if is_signed.
+// The represented value of code c is c · 2^−frac.
+struct FxFormat {
+  int width = 32;
+  int frac = 16;
+  bool is_signed = true;
+  Round round = Round::HalfEven;
+  Overflow overflow = Overflow::Saturate;
+
+  int int_bits() const { return width - frac; }  // sc_fixed's iwl
+  int64_t max_code() const {
+    return is_signed ? (int64_t)((((u128)1) << (width - 1)) - 1) : (int64_t)((((u128)1) << width) - 1);
+  }
+  int64_t min_code() const { return is_signed ? -(int64_t)((((u128)1) << (width - 1))) : 0; }
+  std::string describe() const;  // e.g. "s8.16 RNE sat"
+};
+
+// ---- bit utilities -------------------------------------------------------------------------
+
+// Number of leading zeros of a 64-bit value; clz64(0) == 64.
+inline int clz64(uint64_t x) { return x ? __builtin_clzll(x) : 64; }
+
+// Number of leading zeros of a 128-bit value; clz128(0) == 128.
+inline int clz128(u128 x) {
+  const uint64_t hi = (uint64_t)(x >> 64);
+  return hi ? __builtin_clzll(hi) : 64 + clz64((uint64_t)x);
+}
+
+// Position of the most significant set bit (0-based); -1 for 0.
+inline int msb_index(u128 x) { return 127 - clz128(x); }
+
+// Low `width` bits of x, as unsigned.
+inline u128 low_bits(u128 x, int width) {
+  return width >= 128 ? x : (x & ((((u128)1) << width) - 1));
+}
+
+// ---- rounding shift ------------------------------------------------------------------------
+
+namespace detail {
+
+// x · 2^−shift rounded by r, for 1 ≤ shift ≤ bits(S) − 2; S is int64_t or i128 and U its
+// unsigned twin. Shared by the i128 path and the int64 fast path, so both round alike.
+template <class S, class U>
+inline S shift_round_right(S x, int shift, Round r) {
+  const S floor_q = x >> shift;  // arithmetic shift: floor
+  const U rem = (U)x & ((((U)1) << shift) - 1);  // x − floor_q·2^shift, in [0, 2^shift)
+  if (rem == 0) return floor_q;
+  const U half = ((U)1) << (shift - 1);
+  switch (r) {
+    case Round::Trunc: return floor_q;
+    case Round::TruncZero: return x < 0 ? floor_q + 1 : floor_q;
+    case Round::HalfUp: return rem >= half ? floor_q + 1 : floor_q;
+    case Round::HalfEven:
+      if (rem > half) return floor_q + 1;
+      if (rem < half) return floor_q;
+      return (floor_q & 1) ? floor_q + 1 : floor_q;
+    case Round::HalfAway:
+      if (rem > half) return floor_q + 1;
+      if (rem < half) return floor_q;
+      return x < 0 ? floor_q : floor_q + 1;  // tie: away from zero
+  }
+  return floor_q;  // floor_q + 1 above always fits S: |floor_q| ≤ |x| / 2
+}
+
+}  // namespace detail
+
+// Contract: returns x · 2^−shift rounded to an integer by `r`.
+//   x: any i128; shift: ≥ 0 (shift ≤ 0 is an exact left shift by −shift, caller ensures fit).
+//   Exact: no overflow is possible for shift ≥ 0 (the magnitude only shrinks, +1 at most
+//   when rounding up, which fits because |x| < 2^127).
+//   Special cases: shift ≥ 127 returns the rounding of a value in (−1, 1) — 0, or ±1 when
+//   the mode rounds away from zero there.
+inline i128 shift_round(i128 x, int shift, Round r) {
+  if (shift <= 0) return x * (((i128)1) << (-shift));
+  if (shift >= 127) {
+    // |x · 2^−shift| < 1/2 for every x here except x = −2^127 (never produced by callers):
+    // nearest modes give 0; truncation toward −∞ gives −1 for negative x.
+    if (r == Round::Trunc && x < 0) return -1;
+    return 0;
+  }
+  return detail::shift_round_right<i128, u128>(x, shift, r);
+}
+
+// ---- overflow handling ---------------------------------------------------------------------
+
+// Contract: fits integer code x into `width` bits (signed or unsigned).
+//   Saturate: clamps to [min_code, max_code]. Wrap: keeps the low `width` bits and
+//   reinterprets them (sign-extends when signed). *overflowed (if given) is set when x
+//   was out of range, else left unchanged. 1 ≤ width ≤ 64.
+inline int64_t fit_width(i128 x, int width, bool is_signed, Overflow o, bool* overflowed = nullptr) {
+  const i128 maxv = is_signed ? ((((i128)1) << (width - 1)) - 1) : ((((i128)1) << width) - 1);
+  const i128 minv = is_signed ? -(((i128)1) << (width - 1)) : 0;
+  if (x >= minv && x <= maxv) return (int64_t)x;
+  if (overflowed) *overflowed = true;
+  if (o == Overflow::Saturate) return (int64_t)(x > maxv ? maxv : minv);
+  u128 low = low_bits((u128)x, width);
+  if (is_signed && width < 128 && ((low >> (width - 1)) & 1)) low |= ~((((u128)1) << width) - 1);
+  return (int64_t)(i128)low;
+}
+
+namespace detail {
+
+// Widest destination the int64 fast path handles (its max code must fit int64_t).
+inline constexpr int kFastMaxWidth = 63;
+// Largest right shift the int64 fast path handles (shift_round_right needs ≤ bits − 2).
+inline constexpr int kFastMaxShift = 62;
+
+// convert() for an int64 x, 0 ≤ shift ≤ kFastMaxShift, dst.width ≤ kFastMaxWidth: the same
+// rounding and overflow as the i128 path, in 64-bit arithmetic (the common case: 3× faster).
+inline int64_t convert_fast(int64_t x, int shift, const FxFormat& dst, bool* overflowed) {
+  const int64_t q = shift == 0 ? x : shift_round_right<int64_t, uint64_t>(x, shift, dst.round);
+  const int64_t maxv = dst.max_code(), minv = dst.min_code();
+  if (q >= minv && q <= maxv) return q;
+  if (overflowed) *overflowed = true;
+  if (dst.overflow == Overflow::Saturate) return q > maxv ? maxv : minv;
+  uint64_t low = (uint64_t)q & (((uint64_t)1 << dst.width) - 1);
+  if (dst.is_signed && ((low >> (dst.width - 1)) & 1)) low |= ~(((uint64_t)1 << dst.width) - 1);
+  return (int64_t)low;
+}
+
+}  // namespace detail
+
+// Contract: converts a code with `src_frac` fraction bits into format `dst`:
+//   value = x · 2^−src_frac; result = fit(round(value · 2^dst.frac)).
+//   Rounding by dst.round, overflow by dst.overflow; exact when no bits are dropped and the
+//   result fits. This is sc_fixed's assignment from a wider fixed-point value.
+//   Any x and any frac difference: when the destination has more fraction bits than the
+//   source by so much that x · 2^(dst.frac − src_frac) leaves i128, the value certainly
+//   leaves the ≤ 64-bit destination too: Saturate clamps by sign, Wrap keeps the low bits
+//   (computed modulo 2^128, which preserves them).
+inline int64_t convert(i128 x, int src_frac, const FxFormat& dst, bool* overflowed = nullptr) {
+  const int shift = src_frac - dst.frac;
+  if (x == (i128)(int64_t)x && shift >= 0 && shift <= detail::kFastMaxShift &&
+      dst.width <= detail::kFastMaxWidth)
+    return detail::convert_fast((int64_t)x, shift, dst, overflowed);
+  if (shift < 0 && x != 0) {
+    const int up = -shift;
+    const int headroom = clz128((u128)(x < 0 ? ~x : x)) - 1;  // redundant sign bits of x
+    if (up > headroom) {  // |x · 2^up| ≥ 2^126: out of every destination range
+      if (overflowed) *overflowed = true;
+      if (dst.overflow == Overflow::Saturate) return x < 0 ? dst.min_code() : dst.max_code();
+      const u128 low = up >= 128 ? 0 : ((u128)x << up);
+      return fit_width((i128)low_bits(low, dst.width), dst.width, dst.is_signed, Overflow::Wrap);
+    }
+  }
+  const i128 q = shift_round(x, shift, dst.round);
+  return fit_width(q, dst.width, dst.is_signed, dst.overflow, overflowed);
+}
+
+// Contract: product of two codes, a (frac fa) · b (frac fb), exact, frac fa + fb.
+//   Needs |a|,|b| < 2^63: the product always fits i128.
+inline i128 mul_wide(int64_t a, int64_t b) { return (i128)a * (i128)b; }
+
+// Contract: a·b + c quantised into dst; a has frac fa, b frac fb, c frac fc (fc ≤ fa + fb,
+//   and c aligned exactly by a left shift; the aligned c and the sum must fit i128).
+//   One rounding, one overflow step, as sc_fixed computes `dst = a * b + c` with
+//   full-precision intermediates. Fast path: when product, aligned c and sum fit int64
+//   (checked), the whole computation stays in 64 bits with identical results.
+inline int64_t mac(int64_t a, int fa, int64_t b, int fb, int64_t c, int fc, const FxFormat& dst,
+                   bool* overflowed = nullptr) {
+  const int fp = fa + fb;
+  const int align = fp - fc;  // ≥ 0 by contract
+  const int shift = fp - dst.frac;
+  int64_t p, sum;
+  const int64_t c_aligned = align < 63 ? (int64_t)((uint64_t)c << align) : 0;  // checked below
+  if (align < 63 && shift >= 0 && shift <= detail::kFastMaxShift && dst.width <= detail::kFastMaxWidth &&
+      (c_aligned >> align) == c && !__builtin_mul_overflow(a, b, &p) &&
+      !__builtin_add_overflow(p, c_aligned, &sum))
+    return detail::convert_fast(sum, shift, dst, overflowed);
+  const i128 acc = mul_wide(a, b) + ((i128)c << align);
+  return convert(acc, fp, dst, overflowed);
+}
+
+// ---- normalisation -------------------------------------------------------------------------
+
+// Result of normalising a positive integer into a significand with a leading one.
+struct Normalized {
+  uint64_t sig = 0;  // in [2^(bits−1), 2^bits), or 0 for input 0
+  int exp = 0;       // input ≈ sig · 2^(exp − (bits − 1)), i.e. exp = msb index of the input
+  bool inexact = false;  // bits were dropped (only when the input had more than `bits` bits)
+};
+
+// Contract: normalises x > 0 to a `bits`-bit significand with its msb set (1 ≤ bits ≤ 64).
+//   Drops low bits by rounding mode r; if rounding carries out (sig == 2^bits), renormalises
+//   (sig = 2^(bits−1), exp + 1). x == 0 gives sig 0, exp 0.
+inline Normalized normalize(u128 x, int bits, Round r) {
+  Normalized n;
+  if (x == 0) return n;
+  const int m = msb_index(x);
+  n.exp = m;
+  const int shift = m - (bits - 1);
+  if (shift <= 0) {
+    n.sig = (uint64_t)(x << (-shift));
+    return n;
+  }
+  n.inexact = low_bits(x, shift) != 0;
+  u128 s = (u128)shift_round((i128)x, shift, r);
+  if (s >> bits) {  // carry out of rounding: 1.111… → 10.000…
+    s >>= 1;
+    n.exp += 1;
+  }
+  n.sig = (uint64_t)s;
+  return n;
+}
+
+}  // namespace fxr

@@ -1,0 +1,70 @@
+#include "model/config/param.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+namespace fxr {
+
+std::string camel_case(const std::string& snake) {
+  std::string out;
+  bool up = true;
+  for (char c : snake) {
+    if (c == '_') {
+      up = true;
+      continue;
+    }
+    out += up ? (char)std::toupper((unsigned char)c) : c;
+    up = false;
+  }
+  return out;
+}
+
+void JsonReader::integer(const char* name, int& value, int lo, int hi, const char*) {
+  seen.emplace_back(name);
+  if (!in.contains(name)) return;
+  const auto& j = in.at(name);
+  if (!j.is_number_integer())
+    throw ConfigError(where + ": field '" + name + "': expected an integer, got " + j.dump());
+  const auto v = j.get<int64_t>();
+  if (v < lo || v > hi)
+    throw ConfigError(where + ": field '" + name + "': " + std::to_string(v) + " is outside [" +
+                      std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  value = (int)v;
+}
+
+void JsonReader::reject_unknown() const {
+  for (auto it = in.begin(); it != in.end(); ++it) {
+    if (std::find(seen.begin(), seen.end(), it.key()) == seen.end()) {
+      std::string known;
+      for (const auto& s : seen) known += (known.empty() ? "" : ", ") + s;
+      throw ConfigError(where + ": unknown field '" + it.key() + "' (known: " + known + ")");
+    }
+  }
+}
+
+void emit_sv_params(std::ostream& os, const std::string& prefix, const std::vector<ParamRow>& rows) {
+  for (const auto& r : rows) {
+    os << "  localparam int " << prefix << camel_case(r.name) << " = " << r.value << ";  // " << r.doc;
+    if (!r.choices.empty()) {
+      os << " (";
+      for (size_t i = 0; i < r.choices.size(); ++i) os << (i ? ", " : "") << i << "=" << r.choices[i];
+      os << ")";
+    }
+    os << "\n";
+  }
+}
+
+void emit_md_params(std::ostream& os, const std::vector<ParamRow>& rows) {
+  os << "| parameter | default | range | meaning |\n|---|---|---|---|\n";
+  for (const auto& r : rows) {
+    os << "| `" << r.name << "` | " << r.text << " | ";
+    if (r.choices.empty()) {
+      os << r.lo << " … " << r.hi;
+    } else {
+      for (size_t i = 0; i < r.choices.size(); ++i) os << (i ? ", " : "") << r.choices[i];
+    }
+    os << " | " << r.doc << " |\n";
+  }
+}
+
+}  // namespace fxr

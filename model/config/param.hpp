@@ -1,0 +1,135 @@
+// model/config/param.hpp — the one mechanism through which every configuration parameter is named.
+//
+// A unit's configuration struct lists its parameters exactly once, in a member template
+//
+//     template <class V> void visit(V& v) {
+//       v.integer("seed_index_bits", seed_index_bits, 2, 14, "log2 of the seed table entries");
+//       v.choice("algorithm", algorithm, {"recip_mul", "radix2"}, "divider algorithm");
+//     }
+//
+// and every consumer is a visitor: JSON load (with errors naming the field) and save, the
+// SystemVerilog parameter package for the RTL, the Markdown table in docs/, and the vector
+// manifests. No parameter is written down twice.
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace fxr {
+
+// Error in a configuration or input file; what() names the file, line / path and field.
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// "seed_index_bits" -> "SeedIndexBits" (the RTL's UpperCamelCase parameter name).
+std::string camel_case(const std::string& snake);
+
+// --- visitors -------------------------------------------------------------------------------
+
+// Writes every parameter into a JSON object.
+struct JsonWriter {
+  nlohmann::json& out;
+  void integer(const char* name, int& value, int, int, const char*) { out[name] = value; }
+  template <class E>
+  void choice(const char* name, E& value, std::initializer_list<const char*> names, const char*) {
+    out[name] = *(names.begin() + static_cast<int>(value));
+  }
+};
+
+// Reads parameters from a JSON object. Unknown keys, wrong types and out-of-range values
+// throw ConfigError naming `where` (file and JSON path) and the field.
+struct JsonReader {
+  const nlohmann::json& in;
+  std::string where;
+  std::vector<std::string> seen;
+
+  void integer(const char* name, int& value, int lo, int hi, const char*);
+  template <class E>
+  void choice(const char* name, E& value, std::initializer_list<const char*> names, const char*) {
+    seen.emplace_back(name);
+    if (!in.contains(name)) return;
+    const auto& j = in.at(name);
+    if (!j.is_string())
+      throw ConfigError(where + ": field '" + name + "': expected a string, got " + j.dump());
+    int i = 0;
+    std::string allowed;
+    for (const char* n : names) {
+      if (j.get<std::string>() == n) {
+        value = static_cast<E>(i);
+        return;
+      }
+      allowed += (i ? ", " : "") + std::string(n);
+      ++i;
+    }
+    throw ConfigError(where + ": field '" + name + "': '" + j.get<std::string>() +
+                      "' is not one of: " + allowed);
+  }
+  // After visiting: any key not visited is an error (a misspelt parameter must not be ignored).
+  void reject_unknown() const;
+};
+
+// One row per parameter, for docs tables, manifests and the SV package.
+struct ParamRow {
+  std::string name;   // snake_case, as in JSON
+  int value = 0;      // integer value (index for choices)
+  std::string text;   // value as written in JSON (the choice name for choices)
+  int lo = 0, hi = 0; // allowed range (choices: 0 .. count−1)
+  std::string doc;
+  std::vector<std::string> choices;  // empty for integers
+};
+
+struct RowCollector {
+  std::vector<ParamRow>& rows;
+  void integer(const char* name, int& value, int lo, int hi, const char* doc) {
+    rows.push_back({name, value, std::to_string(value), lo, hi, doc, {}});
+  }
+  template <class E>
+  void choice(const char* name, E& value, std::initializer_list<const char*> names, const char* doc) {
+    ParamRow r{name, static_cast<int>(value), *(names.begin() + static_cast<int>(value)), 0,
+               static_cast<int>(names.size()) - 1, doc, {}};
+    for (const char* n : names) r.choices.emplace_back(n);
+    rows.push_back(r);
+  }
+};
+
+template <class Cfg>
+std::vector<ParamRow> param_rows(const Cfg& cfg) {
+  std::vector<ParamRow> rows;
+  RowCollector c{rows};
+  const_cast<Cfg&>(cfg).visit(c);  // visit does not modify through RowCollector
+  return rows;
+}
+
+template <class Cfg>
+nlohmann::json to_json_params(const Cfg& cfg) {
+  nlohmann::json j = nlohmann::json::object();
+  JsonWriter w{j};
+  const_cast<Cfg&>(cfg).visit(w);
+  return j;
+}
+
+// Overrides fields of cfg from JSON object j; throws ConfigError naming `where` and the field.
+template <class Cfg>
+void from_json_params(const nlohmann::json& j, Cfg& cfg, const std::string& where) {
+  if (!j.is_object()) throw ConfigError(where + ": expected a JSON object, got " + j.dump());
+  JsonReader r{j, where, {}};
+  cfg.visit(r);
+  r.reject_unknown();
+}
+
+// SystemVerilog localparams `localparam int <Prefix><CamelName> = <value>;` with the doc as
+// a comment (choices are emitted as their index, with the names in the comment).
+void emit_sv_params(std::ostream& os, const std::string& prefix, const std::vector<ParamRow>& rows);
+
+// Markdown table: | parameter | value | range | meaning |
+void emit_md_params(std::ostream& os, const std::vector<ParamRow>& rows);
+
+}  // namespace fxr

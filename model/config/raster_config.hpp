@@ -1,0 +1,52 @@
+// model/config/raster_config.hpp — number formats of the raster unit shared by the geometry stages
+// (clipper, perspective divide, viewport snap) and the raster stages (setup, traversal,
+// interpolators, depth, divider). docs/pipeline.md derives each default.
+#pragma once
+
+#include <cstdint>
+
+namespace fxr {
+
+enum class DepthFormat : uint8_t { D16, D24 };
+
+struct RasterConfig {
+  // Window x, y fraction bits. 8: D3D11 (16.8), Vulkan subPixelPrecisionBits in practice.
+  int subpixel_bits = 8;
+  // Signed integer bits of snapped window coordinates (guard band included):
+  // 16 → ±32768 px, D3D11's 16.8 range. Edge coefficients need window_int_bits + subpixel_bits + 1
+  // bits, edge values about twice that (ANCHORS: 25 and 50 bits at 16.8).
+  int window_int_bits = 16;
+  // Significand bits of the clipper's new x_c, y_c, z_c and varyings (w_c uses recip.in_sig_bits).
+  // 32: 8 bits beyond float32 so the ½-ulp rounding of a clipped x_c moves the window
+  // coordinate by ≤ 2^15 px · 2^−32 ≪ one 2^−8 subpixel (docs/pipeline.md, stage 2).
+  int clip_sig_bits = 32;
+  // Fraction bits of the per-vertex depth z_c / w_c ∈ [0, 1] handed to setup.
+  int z_frac_bits = 32;
+  // Significand bits of the per-vertex v · (1/w) handed to setup.
+  int varying_sig_bits = 24;
+  // Significand bits of the perspective-correct varyings leaving the unit (float32: 24).
+  int varying_out_sig_bits = 24;
+  DepthFormat depth_format = DepthFormat::D24;
+  // Width of the per-triangle block-aligned integers of 1/w and of each v/w (interpolators,
+  // stage 7): the largest of the three vertex values has its msb at bit interp_block_bits − 1,
+  // the others are shifted right to the same block exponent (RNE; exact while the three lead
+  // exponents differ by at most interp_block_bits − significand bits, i.e. w ratios up to
+  // 2^16 at the defaults 40 and 24). docs/pipeline.md, stage 7.
+  int interp_block_bits = 40;
+
+  int depth_bits() const { return depth_format == DepthFormat::D16 ? 16 : 24; }
+
+  template <class V>
+  void visit(V& v) {
+    v.integer("subpixel_bits", subpixel_bits, 0, 12, "fraction bits of snapped window x, y");
+    v.integer("window_int_bits", window_int_bits, 8, 20, "signed integer bits of window x, y (guard band included)");
+    v.integer("clip_sig_bits", clip_sig_bits, 16, 60, "significand bits of clipper-made x, y, z and varyings");
+    v.integer("z_frac_bits", z_frac_bits, 16, 40, "fraction bits of per-vertex depth z/w in [0,1]");
+    v.integer("varying_sig_bits", varying_sig_bits, 8, 40, "significand bits of per-vertex v/w");
+    v.integer("varying_out_sig_bits", varying_out_sig_bits, 8, 32, "significand bits of output varyings");
+    v.choice("depth_format", depth_format, {"d16", "d24"}, "depth buffer format (unorm)");
+    v.integer("interp_block_bits", interp_block_bits, 16, 62, "width of block-aligned per-triangle 1/w and v/w integers");
+  }
+};
+
+}  // namespace fxr

@@ -1,0 +1,89 @@
+// model/stages/traverse.hpp — stage 6 (traversal): which pixel centres of the candidate rectangle a
+// set-up triangle covers, row by row, as spans. docs/pipeline.md, stage 6.
+//
+// Exactness. Every edge value is an exact int64 (setup.hpp: edge_value_bits ≤ 63). Row starts
+// are stepped incrementally, E(x0, j+1) = E(x0, j) + b·2^g, and within a narrow rectangle
+// pixels are stepped too, E(i+1, j) = E(i, j) + a·2^g: every stepped value equals the direct
+// evaluation at that pixel centre (tests/model/coverage_test.cpp checks it). In a row the
+// covered pixels form one interval (each biased edge value is monotone in i), so a wide
+// rectangle finds the interval ends with one exact floor / ceil division per edge instead of
+// visiting empty pixels (this is how empty parts of rows and slivers are skipped quickly).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "model/stages/setup.hpp"
+
+namespace fxr {
+
+// Candidate rectangles at most this wide are scanned pixel by pixel; wider ones compute each
+// row's covered interval by division. Both are exact and give the same pixels.
+inline constexpr int kScanMaxWidth = 16;
+
+// Biased edge values E_k + bias_k at pixel centres, stepped incrementally.
+struct EdgeStepper {
+  int64_t v[3];        // at the current pixel
+  int64_t dx[3];       // a_k·2^g: one pixel right
+  int64_t dy[3];       // b_k·2^g: one pixel up
+
+  // Starts at pixel (i, j) with a direct evaluation.
+  EdgeStepper(const TriSetup& t, int i, int j) {
+    const int64_t X = pixel_centre(i, t.g), Y = pixel_centre(j, t.g);
+    for (int k = 0; k < 3; ++k) {
+      v[k] = edge_eval(t.e[k], X, Y) + t.e[k].bias;
+      dx[k] = t.e[k].a * ((int64_t)1 << t.g);
+      dy[k] = t.e[k].b * ((int64_t)1 << t.g);
+    }
+  }
+  bool inside() const { return (v[0] | v[1] | v[2]) >= 0; }  // all three ≥ 0 (sign bits clear)
+  void step_x() { v[0] += dx[0], v[1] += dx[1], v[2] += dx[2]; }
+  void step_y() { v[0] += dy[0], v[1] += dy[1], v[2] += dy[2]; }
+};
+
+// floor(a / d) and ceil(a / d) for d > 0 (exact integer division).
+inline int64_t floor_div(int64_t a, int64_t d) {
+  const int64_t q = a / d;
+  return (a % d != 0 && a < 0) ? q - 1 : q;
+}
+inline int64_t ceil_div(int64_t a, int64_t d) { return -floor_div(-a, d); }
+
+// Contract: calls span(j, xb, xe) for every row j (bottom to top) with covered pixels
+// xb ≤ i ≤ xe (inclusive, xb ≤ xe); rows with none are skipped. A pixel (i, j) of the candidate
+// rectangle is covered iff E_k + bias_k ≥ 0 at its centre for k = 0, 1, 2 (top-left rule).
+template <class SpanFn>
+void traverse(const TriSetup& t, SpanFn&& span) {
+  EdgeStepper row(t, t.x0, t.y0);  // at (x0, j)
+  const int w = t.x1 - t.x0;       // last offset in a row
+  if (w < kScanMaxWidth) {
+    for (int j = t.y0; j <= t.y1; ++j, row.step_y()) {
+      EdgeStepper p = row;
+      int i = 0;
+      while (i <= w && !p.inside()) p.step_x(), ++i;
+      if (i > w) continue;
+      const int xb = i;
+      while (i <= w && p.inside()) p.step_x(), ++i;
+      span(j, t.x0 + xb, t.x0 + i - 1);
+    }
+    return;
+  }
+  for (int j = t.y0; j <= t.y1; ++j, row.step_y()) {
+    // Offsets o ∈ [lo, hi] with row.v[k] + o·dx[k] ≥ 0 for all k.
+    int64_t lo = 0, hi = w;
+    for (int k = 0; k < 3; ++k) {
+      const int64_t e = row.v[k], d = row.dx[k];
+      if (d > 0) {
+        if (e < 0) lo = std::max(lo, ceil_div(-e, d));
+      } else if (d < 0) {
+        if (e < 0) { hi = -1; break; }
+        hi = std::min(hi, floor_div(e, -d));
+      } else if (e < 0) {
+        hi = -1;
+        break;
+      }
+    }
+    if (lo <= hi) span(j, t.x0 + (int)lo, t.x0 + (int)hi);
+  }
+}
+
+}  // namespace fxr

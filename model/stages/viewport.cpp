@@ -1,0 +1,130 @@
+// Stages 3 and 4: reciprocal + perspective divide, viewport + snap. Contracts in model/stages/viewport.hpp.
+#include "model/stages/viewport.hpp"
+
+#include "model/stages/recip.hpp"
+
+namespace fxr {
+
+namespace {
+// Largest |m·2^e| round_scaled_sum accepts (bits), so that (q + c) · 4 stays inside an i128.
+constexpr int kSnapSumMaxBits = 120;
+// Beyond this right shift, m·2^e (|m| < 2^122) is below ¼ and only its sign matters.
+constexpr int kSnapCollapseShift = 124;
+
+// Contract: p with its significand cut to ≤ kSnapProdMaxBits bits by jamming (dropped bits
+// OR-ed into the lowest kept bit). A later RNE to ≤ kSnapProdMaxBits − 2 significant bits of
+// the sum with a coarser integer is then the same as from the exact p.
+FxProd jam(FxProd p) {
+  const int over = msb_index(p.sig) + 1 - kSnapProdMaxBits;
+  if (over <= 0) return p;
+  const bool sticky = low_bits(p.sig, over) != 0;
+  p.sig = (p.sig >> over) | (sticky ? 1 : 0);
+  p.exp += over;
+  return p;
+}
+}  // namespace
+
+FxProd mul_exact(const FxFloat& a, const FxFloat& b) {
+  FxProd p;
+  p.neg = a.neg != b.neg;
+  p.sig = (u128)a.sig * b.sig;
+  p.exp = a.exp + b.exp;
+  return p;
+}
+
+i128 round_scaled_sum(i128 m, int e, i128 c, int sh, bool* range) {
+  if (m == 0) return shift_round(c, sh, Round::HalfEven);
+  const u128 mag = m < 0 ? -(u128)m : (u128)m;
+  if (e >= 0) {
+    if (msb_index(mag) + e > kSnapSumMaxBits) {
+      *range = true;
+      return 0;
+    }
+    return shift_round((m << e) + c, sh, Round::HalfEven);
+  }
+  const int k = -e;
+  i128 q;
+  bool g, s;
+  if (k >= kSnapCollapseShift) {  // |m·2^e| < ¼: floor is 0 or −1, fraction (0,¼) or (¾,1)
+    q = m < 0 ? -1 : 0;
+    g = m < 0;
+    s = true;
+  } else {
+    q = m >> k;                                   // floor
+    const u128 r = (u128)(m - (q << k));          // [0, 2^k)
+    g = (r >> (k - 1)) & 1;                       // the ½ bit
+    s = low_bits(r, k - 1) != 0;                  // anything below it
+  }
+  // X/4 = q + c + (g/2 + s/4) rounds like the exact q + c + r/2^k at any step ≥ 1.
+  const i128 x = ((q + c) << 2) | ((i128)g << 1) | (i128)s;
+  return shift_round(x, sh + 2, Round::HalfEven);
+}
+
+int64_t snap_window(const FxProd& n0, int64_t size, int64_t origin, const RasterConfig& rc, bool* range) {
+  const FxProd n = jam(n0);
+  const int s = rc.subpixel_bits;
+  // 2·code = n·size·2^s + (size + 2·origin)·2^s, then one RNE halving.
+  const i128 m = (i128)(n.sig * (u128)size);      // < 2^(100 + 21)
+  const i128 c = (i128)(size + 2 * origin) << s;
+  bool r = false;
+  const i128 code = round_scaled_sum(n.neg ? -m : m, n.exp + s, c, 1, &r);
+  const int code_bits = rc.window_int_bits + s;  // signed
+  const i128 hi = (((i128)1) << (code_bits - 1)) - 1, lo = -(((i128)1) << (code_bits - 1));
+  if (r || code > hi || code < lo) {
+    *range = true;
+    return 0;
+  }
+  return (int64_t)code;
+}
+
+uint64_t snap_depth(const FxProd& zn0, const RasterConfig& rc) {
+  const FxProd zn = jam(zn0);
+  if (zn.sig == 0 || zn.neg) return 0;  // z_n ≤ 0 saturates to 0
+  const i128 one = ((i128)1) << rc.z_frac_bits;
+  bool r = false;
+  const i128 code = round_scaled_sum((i128)zn.sig, zn.exp + rc.z_frac_bits, 0, 0, &r);
+  if (r || code > one) return (uint64_t)one;  // z_n > 1 saturates to 1 (precision: ½ LSB RNE)
+  return (uint64_t)code;
+}
+
+FxFloat round_prod(const FxProd& p, int bits) {
+  FxFloat f;
+  f.neg = p.neg;
+  if (p.sig == 0) return f;
+  const Normalized nm = normalize(p.sig, bits, Round::HalfEven);  // precision lost: ½ ulp
+  f.sig = nm.sig;
+  f.exp = p.exp + nm.exp - (bits - 1);
+  return f;
+}
+
+ProjectStatus project_vertex(const Config& cfg, const DrawState& st, const ClipVtx& v, SetupVertex& out) {
+  const RasterConfig& rc = cfg.raster;
+  // Stage 3: the reciprocal unit. w is exact at in_sig_bits (float32: 24 bits; the clipper
+  // rounds its w to exactly this width), so this normalisation never rounds.
+  const FxFloat w = normalize_fx(v.p[3], cfg.recip.in_sig_bits, Round::HalfEven);
+  const RecipResult rr = recip(cfg.recip, w);
+  if (rr.div_by_zero || rr.exp_overflow) return ProjectStatus::RecipError;
+  const FxFloat& r = rr.value;
+  // Perspective divide as exact products (no rounding here).
+  const FxProd xn = mul_exact(v.p[0], r), yn = mul_exact(v.p[1], r), zn = mul_exact(v.p[2], r);
+  // Stage 4: viewport + snap, one RNE each.
+  bool range = false;
+  out.x = snap_window(xn, st.viewport_w, st.viewport_x, rc, &range);
+  out.y = snap_window(yn, st.viewport_h, st.viewport_y, rc, &range);
+  if (range) return ProjectStatus::Range;
+  out.z = snap_depth(zn, rc);
+  out.rw = r;
+  for (int k = 0; k < st.num_varyings; ++k) {
+    if (st.interp == InterpMode::Affine) {
+      // Affine (seed 000's wrong image): v itself, at the same width (exact for float32 inputs
+      // when varying_sig_bits ≥ 24).
+      out.vw[k] = v.v[k].sig ? normalize_fx(v.v[k], rc.varying_sig_bits, Round::HalfEven) : v.v[k];
+    } else {
+      out.vw[k] = round_prod(mul_exact(v.v[k], r), rc.varying_sig_bits);
+    }
+  }
+  for (int k = st.num_varyings; k < kMaxVaryings; ++k) out.vw[k] = FxFloat{};
+  return ProjectStatus::Ok;
+}
+
+}  // namespace fxr

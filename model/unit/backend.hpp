@@ -1,0 +1,42 @@
+// model/unit/backend.hpp — stages 5–10 on snapped triangles: setup, traversal, interpolators, depth,
+// divider, output. run_raster_unit (raster_unit.hpp) is geometry() followed by these.
+#pragma once
+
+#include "model/config/config.hpp"
+#include "model/unit/io.hpp"
+#include "model/unit/raster_unit.hpp"
+#include "model/stages/setup.hpp"
+
+namespace fxr {
+
+// Contract: prepares `f` for a frame: size = viewport, depth buffer (w × h, row 0 at the
+// bottom, indexed from the viewport origin) cleared to the maximum code, no fragments, zero
+// statistics. Checks the configuration widths and the draw state (num_varyings within
+// 0 … kMaxVaryings, viewport ≥ 1×1): ConfigError otherwise.
+void frame_begin(const Config& cfg, const DrawState& st, FrameOutput& f);
+
+// Contract: stages 5–10 on one snapped triangle into frame `f` (after frame_begin):
+//   setup (SetupOutcome other than Ok: nothing drawn, returned for the caller to count);
+//   for each covered pixel: fragments_generated++, depth code, depth test (st.depth_test
+//   false: always passes and never writes, as in GL), depth write if st.depth_write; passing
+//   fragments get their varyings (stage 9) and are appended to f.fragments when keep_fragments.
+//   Updates f.stats' fragment counters only (primitive counters are the caller's).
+SetupOutcome raster_triangle(const Config& cfg, const DrawState& st, const SetupTriangle& tri, FrameOutput& f,
+                             bool keep_fragments = true);
+
+// Receives the fragments that pass the depth test, one at a time, in the unit's order (rows
+// bottom to top, left to right within a row). The Fragment is only valid during the call;
+// var[k] is set for k < num_varyings only.
+class FragmentSink {
+ public:
+  virtual ~FragmentSink() = default;
+  virtual void emit(const Fragment& f) = 0;
+};
+
+// Contract: as raster_triangle, but passing fragments go to `sink` (nullptr: none, and the
+// varyings are not computed) instead of f.fragments. A streaming consumer (images, vectors)
+// avoids holding a frame's fragments (sizeof(Fragment) bytes each) in memory.
+SetupOutcome raster_triangle_to(const Config& cfg, const DrawState& st, const SetupTriangle& tri, FrameOutput& f,
+                                FragmentSink* sink);
+
+}  // namespace fxr

@@ -1,0 +1,29 @@
+// model/unit/geometry.hpp — stages 1–4: input conversion, clipper, reciprocal unit + perspective
+// divide, viewport transform + snap. From one clip-space triangle to zero or more snapped
+// setup triangles.
+#pragma once
+
+#include <vector>
+
+#include "model/config/config.hpp"
+#include "model/unit/io.hpp"
+
+namespace fxr {
+
+// How one input primitive left the geometry stages.
+enum class GeomOutcome : uint8_t {
+  Emitted,        // ≥ 1 SetupTriangle appended to `out`
+  CulledOutside,  // trivially rejected or clipped away entirely
+  RejectedNaN,
+  RejectedInf,
+  RejectedRange,  // finite but beyond a format's range
+};
+
+// Contract: appends the snapped triangles of `tri` to `out` (prim index stamped on each) and
+// updates the geometry counters of `stats` (trivial accept, clipped, vertices created,
+// triangles out). The caller counts prims_in and the final disposition. Pure function of its
+// inputs: a shared edge of two input triangles is clipped identically in both.
+GeomOutcome geometry(const Config& cfg, const DrawState& st, const ClipTriangle& tri, uint32_t prim,
+                     std::vector<SetupTriangle>& out, RasterStats& stats);
+
+}  // namespace fxr

@@ -1,0 +1,116 @@
+// model/unit/io.hpp — what enters and leaves the raster unit.
+//
+// Input: primitives as a vertex stage emits them (float32 clip-space positions and
+// varyings), plus the draw state. Output: fragments with integer codes, and statistics that
+// account for every input primitive. Internal stage records live in the stage headers.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/arith/fxfloat.hpp"
+
+namespace fxr {
+
+// Upper bound on varyings per vertex (SPEC: 0 … at least 16).
+inline constexpr int kMaxVaryings = 16;
+
+// One vertex as the vertex stage emits it: raw float32 values (bit patterns are kept, so a
+// user can feed exactly what their vertex stage produced, NaN payloads included).
+struct ClipVertex {
+  float pos[4] = {0, 0, 0, 1};      // x_c, y_c, z_c, w_c
+  float var[kMaxVaryings] = {};     // varyings v_0 … v_{N−1}
+};
+
+struct ClipTriangle {
+  ClipVertex v[3];
+};
+
+enum class CullMode : uint8_t { None, Back, Front };
+enum class DepthFunc : uint8_t { Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always };
+enum class InterpMode : uint8_t { Perspective, Affine };  // Affine: seed 000's wrong image
+
+// Draw state: everything besides the primitives that the unit needs. Window coordinates have
+// y up (row 0 at the bottom), pixel centres at (x + ½, y + ½).
+struct DrawState {
+  int viewport_x = 0, viewport_y = 0, viewport_w = 256, viewport_h = 256;
+  int scissor_x = 0, scissor_y = 0, scissor_w = -1, scissor_h = -1;  // −1: same as the viewport
+  int num_varyings = 0;
+  bool front_ccw = true;  // counter-clockwise (in y-up window space) is front-facing
+  CullMode cull = CullMode::None;
+  DepthFunc depth_func = DepthFunc::Less;
+  bool depth_test = true;
+  bool depth_write = true;
+  InterpMode interp = InterpMode::Perspective;
+};
+
+}  // namespace fxr
+
+namespace fxr {
+
+// ---- the record between the geometry stages (1–4) and the raster stages (5–10) --------------
+//
+// A vertex after input conversion, clipping, the reciprocal unit, the perspective divide and
+// viewport snapping. Formats (named in the configuration, see docs/pipeline.md):
+//   x, y: window coordinates in subpixel units (raster.subpixel_bits fraction bits), snapped
+//         with round-to-nearest-even; y up, pixel centres at (i + ½)·2^subpixel_bits.
+//   z:    z_c / w_c ∈ [0, 1] as an unsigned fraction with raster.z_frac_bits bits.
+//   rw:   1/w_c from the reciprocal unit, a normalised FxFloat (recip.out_sig_bits significand).
+//   vw:   v_k · (1/w_c) per varying, a normalised FxFloat (raster.varying_sig_bits), or, in the
+//         affine mode, v_k itself.
+struct SetupVertex {
+  int64_t x = 0, y = 0;
+  uint64_t z = 0;
+  FxFloat rw;
+  FxFloat vw[kMaxVaryings];
+};
+
+struct SetupTriangle {
+  SetupVertex v[3];
+  uint32_t prim = 0;  // index of the input primitive it came from
+};
+
+// One fragment leaving the unit. depth is the D16 / D24 unorm code; var[k] is the
+// perspective-correct varying as a normalised FxFloat (raster.varying_out_sig_bits).
+struct Fragment {
+  int32_t x = 0, y = 0;  // pixel (column, row), row 0 at the bottom
+  uint32_t depth = 0;
+  uint32_t prim = 0;
+  FxFloat var[kMaxVaryings];
+};
+
+// Every input primitive ends in exactly one of: drawn, culled_* or rejected_*
+// (prims_in == prims_drawn + Σ culled + Σ rejected is asserted by tests).
+struct RasterStats {
+  uint64_t prims_in = 0;
+  uint64_t prims_trivial_accept = 0;     // no clipping needed
+  uint64_t prims_clipped = 0;            // went through the clipper (then drawn or culled)
+  uint64_t clip_vertices_created = 0;
+  uint64_t clip_triangles_out = 0;       // triangles emitted by the clipper
+  uint64_t prims_drawn = 0;              // produced at least one setup triangle that was rasterised
+  uint64_t prims_culled_outside = 0;     // trivially rejected or clipped away entirely
+  uint64_t prims_culled_zero_area = 0;   // zero area after snapping (all pieces)
+  uint64_t prims_culled_backface = 0;
+  uint64_t prims_culled_no_samples = 0;  // bounding box ∩ scissor empty
+  uint64_t prims_rejected_nan = 0;       // a NaN in position or varying
+  uint64_t prims_rejected_inf = 0;       // an infinity in position or varying
+  uint64_t prims_rejected_range = 0;     // finite but beyond a format's range (documented)
+  uint64_t fragments_generated = 0;      // covered samples
+  uint64_t fragments_depth_pass = 0;
+  uint64_t fragments_depth_fail = 0;
+
+  template <class V>
+  void visit(V& v) {
+#define FXR_STAT(n) v(#n, n)
+    FXR_STAT(prims_in); FXR_STAT(prims_trivial_accept); FXR_STAT(prims_clipped);
+    FXR_STAT(clip_vertices_created); FXR_STAT(clip_triangles_out); FXR_STAT(prims_drawn);
+    FXR_STAT(prims_culled_outside); FXR_STAT(prims_culled_zero_area); FXR_STAT(prims_culled_backface);
+    FXR_STAT(prims_culled_no_samples); FXR_STAT(prims_rejected_nan); FXR_STAT(prims_rejected_inf);
+    FXR_STAT(prims_rejected_range); FXR_STAT(fragments_generated); FXR_STAT(fragments_depth_pass);
+    FXR_STAT(fragments_depth_fail);
+#undef FXR_STAT
+  }
+};
+
+}  // namespace fxr

@@ -1,0 +1,23 @@
+// model/unit/raster_unit.hpp — the whole raster unit, stages 1–10, on a list of clip-space triangles.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/config/config.hpp"
+#include "model/unit/io.hpp"
+
+namespace fxr {
+
+struct FrameOutput {
+  int width = 0, height = 0;           // the viewport size
+  std::vector<Fragment> fragments;     // fragments that passed the depth test, in draw order
+  std::vector<uint32_t> depth;         // final depth buffer codes, row 0 at the bottom, w × h
+  RasterStats stats;
+};
+
+// Contract: runs every triangle through geometry() and the raster stages, in order, with a
+// depth buffer cleared to the maximum code. Integer arithmetic only; deterministic.
+FrameOutput run_raster_unit(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris);
+
+}  // namespace fxr

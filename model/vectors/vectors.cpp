@@ -1,0 +1,698 @@
+// Golden vectors: layout, generation, writer, reader / validator (docs/vectors.md), and the
+// vector descriptions of the units (at the end of the file, one section per unit).
+#include "model/vectors/vectors.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "model/arith/div.hpp"
+#include "model/stages/recip.hpp"
+
+namespace fxr {
+
+// Largest exhaustive sweep a unit offers (lines): 2^24 lines are about 0.4 GB of hex.
+static constexpr uint64_t kMaxExhaustive = 1ull << 24;
+
+// ---- layout ----------------------------------------------------------------------------------
+
+VecLayout::VecLayout(std::vector<VecField> fields) : fields_(std::move(fields)) {
+  bool seen_out = false;
+  for (size_t i = 0; i < fields_.size(); ++i) {
+    auto& f = fields_[i];
+    if (f.width < 1 || f.width > kVecMaxFieldBits)
+      throw ConfigError("vector layout: field '" + f.name + "': width " + std::to_string(f.width) +
+                        " is outside [1, " + std::to_string(kVecMaxFieldBits) + "]");
+    if (f.dir == VecDir::Out) seen_out = true;
+    if (f.dir == VecDir::In && seen_out)
+      throw ConfigError("vector layout: field '" + f.name + "': inputs must precede outputs");
+    for (size_t j = 0; j < i; ++j)
+      if (fields_[j].name == f.name) throw ConfigError("vector layout: field '" + f.name + "' twice");
+    f.digits = (f.width + kVecBitsPerDigit - 1) / kVecBitsPerDigit;
+    digits_ += f.digits;
+    (f.dir == VecDir::In ? in_ : out_).push_back((int)i);
+  }
+  // Offsets from the lsb: the last field sits at bit 0.
+  int off = 0;
+  for (size_t i = fields_.size(); i-- > 0;) {
+    fields_[i].offset = off;
+    off += fields_[i].digits * kVecBitsPerDigit;
+  }
+}
+
+int VecLayout::index(const std::string& name) const {
+  for (size_t i = 0; i < fields_.size(); ++i)
+    if (fields_[i].name == name) return (int)i;
+  return -1;
+}
+
+uint64_t vec_mask(int width) { return width >= 64 ? ~0ull : ((1ull << width) - 1); }
+
+int64_t vec_unpack_signed(uint64_t bits, int width) {
+  bits &= vec_mask(width);
+  if (width < 64 && ((bits >> (width - 1)) & 1)) bits |= ~vec_mask(width);
+  return (int64_t)bits;
+}
+
+std::string vec_field_hex(const VecField& f, uint64_t bits) {
+  static const char* kHex = "0123456789abcdef";
+  std::string s((size_t)f.digits, '0');
+  for (int d = f.digits - 1; d >= 0; --d) {
+    s[(size_t)d] = kHex[bits & 0xf];
+    bits >>= kVecBitsPerDigit;
+  }
+  return s;
+}
+
+std::string vec_hex(const VecLayout& l, const VecRow& r) {
+  std::string s;
+  s.reserve((size_t)l.digits());
+  for (size_t i = 0; i < l.size(); ++i) s += vec_field_hex(l[i], r[i]);
+  return s;
+}
+
+std::string vec_hex(const VecLayout& l, const VecRow& r, VecDir dir) {
+  std::string s;
+  for (int i : dir == VecDir::In ? l.inputs() : l.outputs()) s += vec_field_hex(l[(size_t)i], r[(size_t)i]);
+  return s;
+}
+
+VecRow VecFile::row(size_t i) const {
+  const size_t n = manifest.layout.size();
+  return VecRow(data.begin() + (ptrdiff_t)(i * n), data.begin() + (ptrdiff_t)((i + 1) * n));
+}
+
+// ---- units -----------------------------------------------------------------------------------
+
+std::vector<VectorUnitInfo> builtin_vector_units();  // end of this file
+
+static std::vector<VectorUnitInfo>& unit_registry() {
+  static std::vector<VectorUnitInfo> r = builtin_vector_units();
+  return r;
+}
+
+const std::vector<VectorUnitInfo>& vector_units() { return unit_registry(); }
+
+void add_vector_unit(VectorUnitInfo info) {
+  auto& r = unit_registry();
+  for (auto& u : r)
+    if (u.name == info.name) {
+      u = std::move(info);
+      return;
+    }
+  r.push_back(std::move(info));
+}
+
+const VectorUnitInfo& vector_unit(const std::string& name) {
+  std::string known;
+  for (const auto& u : vector_units()) {
+    if (u.name == name) return u;
+    known += (known.empty() ? "" : ", ") + u.name;
+  }
+  throw ConfigError("unknown vector unit '" + name + "' (known: " + known + ")");
+}
+
+std::unique_ptr<VectorModel> make_vector_model(const std::string& unit, const Config& cfg) {
+  return vector_unit(unit).make(cfg);
+}
+
+// ---- generation ------------------------------------------------------------------------------
+
+std::vector<VecCases> generate_vectors(const VectorModel& m, uint64_t seed, uint64_t count,
+                                       bool exhaustive,
+                                       const std::function<void(const VecRow&)>& sink) {
+  std::vector<VecCases> cases;
+  uint64_t line = 0;
+  auto emit = [&](VecRow& r) {
+    m.compute(r);
+    sink(r);
+    ++line;
+  };
+  {
+    auto dir = m.directed();
+    cases.push_back({"directed", line, dir.size()});
+    for (auto& r : dir) emit(r);
+  }
+  if (exhaustive) {
+    const uint64_t n = m.exhaustive_count();
+    if (n == 0)
+      throw ConfigError("--exhaustive: the input domain of this unit at this configuration is too "
+                        "large to enumerate; use --count for random cases");
+    cases.push_back({"exhaustive", line, n});
+    VecRow r = m.blank();
+    for (uint64_t i = 0; i < n; ++i) {
+      std::fill(r.begin(), r.end(), 0);
+      m.exhaustive(i, r);
+      emit(r);
+    }
+  } else if (count > 0) {
+    cases.push_back({"random", line, count});
+    std::mt19937_64 rng(seed);
+    VecRow r = m.blank();
+    for (uint64_t i = 0; i < count; ++i) {
+      std::fill(r.begin(), r.end(), 0);
+      m.random(rng, r);
+      emit(r);
+    }
+  }
+  return cases;
+}
+
+// ---- manifest --------------------------------------------------------------------------------
+
+static const char* dir_name(VecDir d) { return d == VecDir::In ? "in" : "out"; }
+
+nlohmann::json manifest_to_json(const VecManifest& m) {
+  using nlohmann::json;
+  json j;  // nlohmann's json keeps keys sorted: the file is byte-stable
+  j["format"] = kVectorFormatName;
+  j["format_version"] = kVectorFormatVersion;
+  j["generator"] = "fxraster vectors";
+  j["generator_version"] = m.generator_version;
+  j["unit"] = m.unit;
+  j["hex_file"] = m.hex_file;
+  j["seed"] = m.seed;
+  j["count"] = m.count;
+  j["line_hex_digits"] = m.layout.digits();
+  j["word_bits"] = m.layout.word_bits();
+  j["layout_rule"] =
+      "one vector per line: the fields below concatenated msb-first into one hex word, each "
+      "zero-padded to ceil(width/4) digits; field value = word[offset +: width]; signed = two's "
+      "complement in width bits";
+  json fields = json::array();
+  for (const auto& f : m.layout.fields())
+    fields.push_back({{"name", f.name}, {"dir", dir_name(f.dir)}, {"width", f.width},
+                      {"hex_digits", f.digits}, {"offset", f.offset}, {"signed", f.is_signed},
+                      {"format", f.format}});
+  j["fields"] = fields;
+  json cases = json::array();
+  for (const auto& c : m.cases)
+    cases.push_back({{"kind", c.kind}, {"first_line", c.first + 1}, {"count", c.count}});
+  j["cases"] = cases;
+  j["config"] = m.config;
+  return j;
+}
+
+std::string vec_manifest_path(const std::string& hex_path) {
+  const size_t slash = hex_path.find_last_of('/');
+  const size_t dot = hex_path.find_last_of('.');
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash))
+    return hex_path.substr(0, dot) + ".json";
+  return hex_path + ".json";
+}
+
+static std::string base_name(const std::string& p) {
+  const size_t slash = p.find_last_of('/');
+  return slash == std::string::npos ? p : p.substr(slash + 1);
+}
+
+// ---- writer ----------------------------------------------------------------------------------
+
+struct VecWriter::Impl {
+  std::FILE* f = nullptr;
+  std::string line;
+};
+
+VecWriter::VecWriter(const std::string& hex_path, const VecLayout& layout)
+    : impl_(new Impl), layout_(layout), path_(hex_path) {
+  impl_->f = std::fopen(hex_path.c_str(), "wb");
+  if (!impl_->f) throw ConfigError(hex_path + ": cannot write");
+  impl_->line.reserve((size_t)layout.digits() + 1);
+}
+
+VecWriter::~VecWriter() {
+  if (impl_ && impl_->f) std::fclose(impl_->f);
+}
+
+void VecWriter::write(const VecRow& row) {
+  impl_->line = vec_hex(layout_, row);
+  impl_->line += '\n';  // every line ends in a newline, the last one too
+  std::fwrite(impl_->line.data(), 1, impl_->line.size(), impl_->f);
+  ++count_;
+}
+
+void VecWriter::finish(VecManifest m) {
+  const bool bad = std::ferror(impl_->f) != 0;
+  if (std::fclose(impl_->f) != 0 || bad) {
+    impl_->f = nullptr;
+    throw ConfigError(path_ + ": write failed");
+  }
+  impl_->f = nullptr;
+  m.count = count_;
+  m.hex_file = base_name(path_);
+  m.layout = layout_;
+  const std::string mp = vec_manifest_path(path_);
+  std::ofstream o(mp, std::ios::binary);
+  if (!o) throw ConfigError(mp + ": cannot write");
+  o << manifest_to_json(m).dump(2) << "\n";
+  if (!o) throw ConfigError(mp + ": write failed");
+}
+
+VecManifest write_unit_vectors(const std::string& unit, const Config& cfg, uint64_t seed,
+                               uint64_t count, bool exhaustive, const std::string& dir) {
+  auto m = make_vector_model(unit, cfg);
+  if (exhaustive && m->exhaustive_count() == 0)  // before any file is opened
+    throw ConfigError("vectors " + unit + " --exhaustive: the input domain at this configuration is too "
+                      "large to enumerate (more than " + std::to_string(kMaxExhaustive) +
+                      " lines); use --count for random cases");
+  VecWriter w(dir + "/" + unit + ".hex", m->layout());
+  VecManifest man;
+  man.unit = unit;
+  man.config = m->config_json();
+  man.seed = seed;
+  man.cases = generate_vectors(*m, seed, count, exhaustive, [&](const VecRow& r) { w.write(r); });
+  w.finish(man);
+  man.count = w.count();
+  man.hex_file = unit + ".hex";
+  man.layout = m->layout();
+  return man;
+}
+
+// ---- reader / validator ----------------------------------------------------------------------
+
+namespace {
+
+template <class T>
+T need(const nlohmann::json& j, const char* key, const std::string& where) {
+  if (!j.contains(key)) throw ConfigError(where + ": field '" + key + "' is missing");
+  try {
+    return j.at(key).get<T>();
+  } catch (const nlohmann::json::exception&) {
+    throw ConfigError(where + ": field '" + key + "' has the wrong type: " + j.at(key).dump());
+  }
+}
+
+// First differing key between two JSON objects, as a path ("recip.seed_index_bits").
+std::string first_difference(const nlohmann::json& a, const nlohmann::json& b, const std::string& path) {
+  if (a.is_object() && b.is_object()) {
+    for (auto it = a.begin(); it != a.end(); ++it) {
+      const std::string p = path.empty() ? it.key() : path + "." + it.key();
+      if (!b.contains(it.key())) return p + " (missing on one side)";
+      std::string d = first_difference(it.value(), b.at(it.key()), p);
+      if (!d.empty()) return d;
+    }
+    for (auto it = b.begin(); it != b.end(); ++it)
+      if (!a.contains(it.key())) return (path.empty() ? it.key() : path + "." + it.key()) + " (missing on one side)";
+    return "";
+  }
+  return a == b ? "" : path + " (" + a.dump() + " vs " + b.dump() + ")";
+}
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+}  // namespace
+
+VecFile read_vectors(const std::string& hex_path, const Config* expect) {
+  VecFile vf;
+  vf.hex_path = hex_path;
+  const std::string mp = vec_manifest_path(hex_path);
+  nlohmann::json j;
+  {
+    std::ifstream in(mp);
+    if (!in) throw ConfigError(mp + ": cannot open the manifest of " + hex_path);
+    try {
+      j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw ConfigError(mp + ": not valid JSON: " + e.what());
+    }
+  }
+  if (!j.is_object()) throw ConfigError(mp + ": the manifest must be a JSON object");
+  if (need<std::string>(j, "format", mp) != kVectorFormatName)
+    throw ConfigError(mp + ": field 'format': expected \"" + kVectorFormatName + "\"");
+  const int fv = need<int>(j, "format_version", mp);
+  if (fv != kVectorFormatVersion)
+    throw ConfigError(mp + ": field 'format_version': " + std::to_string(fv) +
+                      " is not supported (expected " + std::to_string(kVectorFormatVersion) + ")");
+  VecManifest& m = vf.manifest;
+  m.generator_version = need<int>(j, "generator_version", mp);
+  if (m.generator_version != kVectorGeneratorVersion)
+    throw ConfigError(mp + ": field 'generator_version': " + std::to_string(m.generator_version) +
+                      " differs from this generator's " + std::to_string(kVectorGeneratorVersion) +
+                      " (regenerate the file with `fxraster vectors`)");
+  m.unit = need<std::string>(j, "unit", mp);
+  m.hex_file = need<std::string>(j, "hex_file", mp);
+  if (m.hex_file != base_name(hex_path))
+    throw ConfigError(mp + ": field 'hex_file': \"" + m.hex_file + "\" is not " + base_name(hex_path));
+  m.seed = need<uint64_t>(j, "seed", mp);
+  m.count = need<uint64_t>(j, "count", mp);
+  if (!j.contains("config") || !j.at("config").is_object())
+    throw ConfigError(mp + ": field 'config' is missing or not an object");
+  m.config = j.at("config");
+  const Config cfg = config_from_json(m.config, mp + ": config");
+  auto model = make_vector_model(m.unit, cfg);
+  if (model->config_json() != m.config)
+    throw ConfigError(mp + ": field 'config': sections other than the unit's, or not in canonical "
+                      "form: " + first_difference(m.config, model->config_json(), "config"));
+  if (expect) {
+    const auto want = make_vector_model(m.unit, *expect)->config_json();
+    if (want != m.config)
+      throw ConfigError(mp + ": field 'config' does not match the expected configuration: " +
+                        first_difference(m.config, want, "config") +
+                        " (manifest vs expected; regenerate the vectors or pass the same --config)");
+  }
+  // Fields: must equal the model's layout at this configuration, field by field.
+  const VecLayout& lay = model->layout();
+  const auto& jf = j.contains("fields") ? j.at("fields") : nlohmann::json();
+  if (!jf.is_array()) throw ConfigError(mp + ": field 'fields' is missing or not an array");
+  if (jf.size() != lay.size())
+    throw ConfigError(mp + ": field 'fields': " + std::to_string(jf.size()) + " fields, the unit '" +
+                      m.unit + "' has " + std::to_string(lay.size()));
+  for (size_t i = 0; i < lay.size(); ++i) {
+    const std::string w = mp + ": fields[" + std::to_string(i) + "]";
+    const auto& f = lay[i];
+    const auto name = need<std::string>(jf[i], "name", w);
+    if (name != f.name) throw ConfigError(w + ": field 'name': \"" + name + "\", expected \"" + f.name + "\"");
+    const std::string wf = mp + ": field '" + f.name + "'";
+    if (need<int>(jf[i], "width", wf) != f.width)
+      throw ConfigError(wf + ": width " + jf[i].at("width").dump() + ", the configuration gives " +
+                        std::to_string(f.width));
+    if (need<int>(jf[i], "offset", wf) != f.offset)
+      throw ConfigError(wf + ": offset " + jf[i].at("offset").dump() + ", the layout gives " +
+                        std::to_string(f.offset));
+    if (need<std::string>(jf[i], "dir", wf) != dir_name(f.dir))
+      throw ConfigError(wf + ": dir " + jf[i].at("dir").dump() + ", expected \"" + dir_name(f.dir) + "\"");
+    if (need<bool>(jf[i], "signed", wf) != f.is_signed)
+      throw ConfigError(wf + ": signed " + jf[i].at("signed").dump() + " differs from the unit's");
+  }
+  m.layout = lay;
+  if (need<int>(j, "line_hex_digits", mp) != lay.digits())
+    throw ConfigError(mp + ": field 'line_hex_digits': " + j.at("line_hex_digits").dump() +
+                      ", the fields add up to " + std::to_string(lay.digits()));
+  if (j.contains("cases") && j.at("cases").is_array()) {
+    uint64_t next = 1;
+    for (const auto& c : j.at("cases")) {
+      VecCases vc{need<std::string>(c, "kind", mp + ": cases"), need<uint64_t>(c, "first_line", mp + ": cases") - 1,
+                  need<uint64_t>(c, "count", mp + ": cases")};
+      if (vc.first + 1 != next)
+        throw ConfigError(mp + ": field 'cases': kind '" + vc.kind + "' starts at line " +
+                          std::to_string(vc.first + 1) + ", expected " + std::to_string(next));
+      next += vc.count;
+      m.cases.push_back(vc);
+    }
+    if (next - 1 != m.count)
+      throw ConfigError(mp + ": field 'cases': the kinds cover " + std::to_string(next - 1) +
+                        " lines, 'count' says " + std::to_string(m.count));
+  } else {
+    throw ConfigError(mp + ": field 'cases' is missing or not an array");
+  }
+
+  // Hex lines.
+  std::ifstream in(hex_path, std::ios::binary);
+  if (!in) throw ConfigError(hex_path + ": cannot open");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t nf = lay.size();
+  // Reserve from the file's size, not from the manifest's count (which may be anything).
+  vf.data.reserve(text.size() / ((size_t)lay.digits() + 1) * nf);
+  size_t pos = 0;
+  uint64_t line = 0;
+  while (pos < text.size()) {
+    ++line;
+    const size_t eol = text.find('\n', pos);
+    const std::string where = hex_path + ":" + std::to_string(line);
+    if (eol == std::string::npos)
+      throw ConfigError(where + ": the last line has no trailing newline (Verilator's $readmemh "
+                        "would drop it; the file may be truncated)");
+    size_t len = eol - pos;
+    if (len > 0 && text[eol - 1] == '\r')
+      throw ConfigError(where + ": CR line end (the format uses LF only)");
+    if (line > m.count)
+      throw ConfigError(where + ": more lines than the manifest's count " + std::to_string(m.count));
+    if ((int)len != lay.digits()) {
+      throw ConfigError(where + ": " + std::to_string(len) + " hex digits, expected " +
+                        std::to_string(lay.digits()) + " (" + std::to_string(nf) +
+                        " fields; wrong field count or width)");
+    }
+    size_t col = pos;
+    for (size_t fi = 0; fi < nf; ++fi) {
+      const auto& f = lay[fi];
+      uint64_t v = 0;
+      for (int d = 0; d < f.digits; ++d, ++col) {
+        const int h = hex_value(text[col]);
+        if (h < 0) {
+          const unsigned char c = (unsigned char)text[col];
+          char shown[8];
+          std::snprintf(shown, sizeof shown, (c >= 0x20 && c < 0x7f) ? "%c" : "\\x%02x", c);
+          throw ConfigError(where + ": field '" + f.name + "' (column " + std::to_string(col - pos + 1) +
+                            "): bad hex digit '" + std::string(shown) + "'");
+        }
+        v = (v << kVecBitsPerDigit) | (uint64_t)h;
+      }
+      if (v & ~vec_mask(f.width))
+        throw ConfigError(where + ": field '" + f.name + "': value " + vec_field_hex(f, v) +
+                          " does not fit its " + std::to_string(f.width) + " bits");
+      vf.data.push_back(v);
+    }
+    pos = eol + 1;
+  }
+  if (line < m.count)
+    throw ConfigError(hex_path + ": " + std::to_string(line) + " lines, the manifest says " +
+                      std::to_string(m.count) + " (truncated file?)");
+  return vf;
+}
+
+uint64_t recheck_vectors(const VecFile& f, std::vector<std::string>* first, size_t max_report) {
+  const Config cfg = config_from_json(f.manifest.config, f.hex_path);
+  auto model = make_vector_model(f.manifest.unit, cfg);
+  const VecLayout& lay = f.manifest.layout;
+  uint64_t bad = 0;
+  VecRow r;
+  for (size_t i = 0; i < f.rows(); ++i) {
+    const VecRow want = f.row(i);
+    r = want;
+    for (int o : lay.outputs()) r[(size_t)o] = 0;
+    model->compute(r);
+    if (r != want) {
+      ++bad;
+      if (first && first->size() < max_report)
+        first->push_back(f.hex_path + ":" + std::to_string(i + 1) + ": in=" + vec_hex(lay, want, VecDir::In) +
+                         " file=" + vec_hex(lay, want, VecDir::Out) + " model=" + vec_hex(lay, r, VecDir::Out));
+    }
+  }
+  return bad;
+}
+
+// ==== the units ===============================================================================
+// One section per unit: its fields (named as the RTL ports without _i / _o), the model call,
+// and its directed / random / exhaustive cases.
+
+namespace {
+
+// Raw-bit helpers for the generators (platform-independent: no std distributions).
+inline uint64_t bit(int i) { return 1ull << i; }
+// A significand of `bits` bits with its msb set, the rest from rng.
+inline uint64_t random_sig(std::mt19937_64& rng, int bits) { return bit(bits - 1) | (rng() & vec_mask(bits - 1)); }
+// Integer in [lo, hi] (hi − lo < 2^32; the modulo bias is < 2^-32 and documented as such).
+inline int64_t random_in(std::mt19937_64& rng, int64_t lo, int64_t hi) {
+  return lo + (int64_t)((rng() >> 32) % (uint64_t)(hi - lo + 1));
+}
+
+nlohmann::json unit_config_json(const char* unit, const nlohmann::json& params) {
+  return {{"version", kConfigFormatVersion}, {unit, params}};
+}
+
+// ---- div: the per-pixel significand divider (model/arith/div.hpp, rtl/fxr_div.sv) -------------------
+// Fields: in_num [num_bits], in_den [den_bits] (significands with the msb set, or 0);
+// out_sig [quot_bits], out_exp_adj (signed, {−1, 0, +1}), out_dbz. Model: div_sig.
+
+// out_exp_adj ∈ {−1, 0, +1}: two's complement needs 2 bits.
+constexpr int kDivExpAdjBits = 2;
+
+class DivVectors : public VectorModel {
+ public:
+  explicit DivVectors(const Config& c) : c_(c.div) {
+    nb_ = c_.num_bits;
+    db_ = c_.den_bits;
+    qb_ = c_.quot_bits;
+    const std::string nb = std::to_string(nb_), db = std::to_string(db_), qb = std::to_string(qb_);
+    lay_ = VecLayout({
+        {"in_num", VecDir::In, nb_, false, "unsigned numerator significand, " + nb + " bits, msb set (or 0)"},
+        {"in_den", VecDir::In, db_, false, "unsigned denominator significand, " + db + " bits, msb set (or 0 = divide by zero)"},
+        {"out_sig", VecDir::Out, qb_, false,
+         "unsigned quotient significand, " + qb + " bits, msb set, RNE; 0 when num = 0; all ones when den = 0"},
+        {"out_exp_adj", VecDir::Out, kDivExpAdjBits, true,
+         "signed exponent adjustment: quotient = sig·2^-(" + qb + "-1)·2^exp_adj, exp_adj in {-1, 0, +1}"},
+        {"out_dbz", VecDir::Out, 1, false, "1 when den = 0"},
+    });
+  }
+  const VecLayout& layout() const override { return lay_; }
+  nlohmann::json config_json() const override { return unit_config_json("div", to_json_params(c_)); }
+  void compute(VecRow& r) const override {
+    const DivSig q = div_sig(c_, r[0], r[1]);
+    r[2] = q.sig;
+    r[3] = vec_pack(q.exp_adj, kDivExpAdjBits);
+    r[4] = r[1] == 0;
+  }
+  std::vector<VecRow> directed() const override {
+    std::vector<VecRow> v;
+    auto add = [&](uint64_t n, uint64_t d) { v.push_back({n, d, 0, 0, 0}); };
+    const uint64_t nmin = bit(nb_ - 1), nmax = vec_mask(nb_), dmin = bit(db_ - 1), dmax = vec_mask(db_);
+    // Extremes and zeros (den = 0: the RTL raises out_dbz and saturates, as the model).
+    for (uint64_t n : {nmin, nmin + 1, nmax - 1, nmax})
+      for (uint64_t d : {dmin, dmin + 1, dmax - 1, dmax}) add(n, d);
+    for (uint64_t n : {uint64_t(0), nmin, nmax}) add(n, 0);
+    for (uint64_t d : {dmin, dmax}) add(0, d);
+    // Equal operands and n = d ± 1 ulp of n (d aligned to n's width), across the range.
+    const int sh = nb_ - db_;
+    auto align = [&](uint64_t d) { return sh >= 0 ? d << sh : d >> -sh; };
+    for (uint64_t d : {dmin, dmin + 1, dmin | (dmin >> 1), dmax - 1, dmax}) {
+      const uint64_t n = align(d);
+      if (n >= nmin && n <= nmax) add(n, d);
+      if (n - 1 >= nmin) add(n - 1, d);
+      if (n + 1 <= nmax) add(n + 1, d);
+    }
+    // Round-to-nearest-even ties and near-ties: d = 1.0, n with the bit below the quotient lsb set.
+    if (nb_ > qb_) {
+      const uint64_t half = bit(nb_ - qb_ - 1);
+      for (uint64_t base : {nmin, nmin + 2 * half, nmax & ~vec_mask(nb_ - qb_)}) {
+        add(base + half, dmin);
+        add(base + half - 1, dmin);
+        if (half > 1 || base + half + 1 <= nmax) add(std::min(base + half + 1, nmax), dmin);
+      }
+    }
+    // Powers of two in the divisor's fraction (quotients with long carry chains).
+    for (int i = 0; i < db_ - 1; ++i) add(nmax, dmin | bit(i));
+    return v;
+  }
+  // Random: 1 case in 32 has den = 0, 1 in 32 num = 0, 1 in 16 has n within ±8 of the aligned d
+  // (quotients near 1, the exp_adj boundary); the others are uniform significands.
+  void random(std::mt19937_64& rng, VecRow& r) const override {
+    const uint64_t sel = rng() & 31;
+    r[0] = random_sig(rng, nb_);
+    r[1] = random_sig(rng, db_);
+    if (sel == 0) r[1] = 0;
+    if (sel == 1) r[0] = 0;
+    if (sel == 2 || sel == 3) {
+      const int sh = nb_ - db_;
+      const uint64_t n = sh >= 0 ? r[1] << sh : r[1] >> -sh;
+      const int64_t delta = random_in(rng, -8, 8);
+      const uint64_t m = (uint64_t)((int64_t)n + delta);
+      r[0] = (m >= bit(nb_ - 1) && m <= vec_mask(nb_)) ? m : n;
+    }
+  }
+  // Every pair of significands (msb set) when there are at most kMaxExhaustive.
+  uint64_t exhaustive_count() const override {
+    const int b = (nb_ - 1) + (db_ - 1);
+    return bit(std::min(b, 63)) <= kMaxExhaustive ? bit(b) : 0;
+  }
+  void exhaustive(uint64_t i, VecRow& r) const override {
+    r[0] = bit(nb_ - 1) | (i >> (db_ - 1));
+    r[1] = bit(db_ - 1) | (i & vec_mask(db_ - 1));
+  }
+
+ private:
+  DivConfig c_;
+  int nb_, db_, qb_;
+  VecLayout lay_;
+};
+
+// ---- recip: the reciprocal unit 1/w (model/stages/recip.hpp, rtl/fxr_recip.sv) ----------------------
+// Fields: in_neg, in_exp [exp_bits] (signed exponent of the leading one), in_sig [in_sig_bits]
+// (msb set, or 0 for w = 0); out_neg, out_exp [exp_bits], out_sig [out_sig_bits] (msb set),
+// out_dbz (w = 0), out_ovf (exponent overflow). Model: RecipUnit (= fxr::recip).
+
+class RecipVectors : public VectorModel {
+ public:
+  explicit RecipVectors(const Config& c) : c_(c.recip), unit_(c.recip) {
+    n_ = c_.in_sig_bits;
+    o_ = c_.out_sig_bits;
+    eb_ = c_.exp_bits;
+    emin_ = recip_exp_min(c_);
+    emax_ = recip_exp_max(c_);
+    const std::string n = std::to_string(n_), o = std::to_string(o_), e = std::to_string(eb_);
+    const std::string range = "[" + std::to_string(emin_) + ", " + std::to_string(emax_) + "]";
+    lay_ = VecLayout({
+        {"in_neg", VecDir::In, 1, false, "sign of w (1 = negative)"},
+        {"in_exp", VecDir::In, eb_, true, "signed exponent of the leading one of w, " + e + " bits, " + range},
+        {"in_sig", VecDir::In, n_, false,
+         "unsigned significand of w, " + n + " bits, msb set: w = (-1)^neg * sig * 2^(exp-(" + n + "-1)); 0 for w = 0"},
+        {"out_neg", VecDir::Out, 1, false, "sign of 1/w (= in_neg)"},
+        {"out_exp", VecDir::Out, eb_, true, "signed exponent of the leading one of 1/w, " + e + " bits"},
+        {"out_sig", VecDir::Out, o_, false,
+         "unsigned significand of 1/w, " + o + " bits, msb set, round to nearest (fxr::recip)"},
+        {"out_dbz", VecDir::Out, 1, false, "w = 0 (result: largest magnitude)"},
+        {"out_ovf", VecDir::Out, 1, false, "exponent overflow: 1/|w| >= 2^(exp_max+1) (result: largest magnitude)"},
+    });
+  }
+  const VecLayout& layout() const override { return lay_; }
+  nlohmann::json config_json() const override { return unit_config_json("recip", to_json_params(c_)); }
+  void compute(VecRow& r) const override {
+    FxFloat w;
+    w.neg = r[0] != 0;
+    w.sig = r[2];
+    w.exp = (int)vec_unpack_signed(r[1], eb_) - (n_ - 1);
+    const RecipResult q = unit_(w);
+    r[3] = q.value.neg;
+    r[4] = vec_pack(q.value.exp + (o_ - 1), eb_);  // lead exponent, always in [emin, emax]
+    r[5] = q.value.sig;
+    r[6] = q.div_by_zero;
+    r[7] = q.exp_overflow;
+  }
+  std::vector<VecRow> directed() const override {
+    std::vector<VecRow> v;
+    auto add = [&](bool neg, int exp, uint64_t sig) { v.push_back({neg, vec_pack(exp, eb_), sig, 0, 0, 0, 0, 0}); };
+    const uint64_t one = bit(n_ - 1), max = vec_mask(n_);
+    // w = ±0 (divide by zero), with a few exponents (the exponent of a zero is ignored).
+    for (int e : {0, emin_, emax_}) add(false, e, 0);
+    add(true, 0, 0);
+    // Powers of two, just above and just below, at the exponent extremes (w = 2^emin overflows).
+    for (int e : {0, 1, -1, emin_, emin_ + 1, emax_, emax_ - 1})
+      for (uint64_t m : {one, one + 1, max, max - 1}) add(false, e, m);
+    for (uint64_t m : {one, one + 1, max}) add(true, 0, m);
+    add(true, emin_, one);
+    add(true, emax_, max);
+    // Every seed-table segment boundary: first significand of each segment and the one before.
+    const int s = c_.seed_index_bits;
+    for (uint64_t i = 1; i < bit(s); ++i) {
+      const uint64_t m = one + (i << (n_ - 1 - s));
+      add(false, 0, m - 1);
+      add(false, 0, m);
+    }
+    return v;
+  }
+  // Random: 1 case in 64 is w = 0, 1 in 64 has exp = emin, 1 in 64 exp = emax, 1 in 64 an exact
+  // power of two; the others: random sign, exponent uniform in [emin, emax], uniform significand.
+  void random(std::mt19937_64& rng, VecRow& r) const override {
+    const uint64_t sel = rng() & 63;
+    r[0] = rng() & 1;
+    int e = (int)random_in(rng, emin_, emax_);
+    r[2] = random_sig(rng, n_);
+    if (sel == 0) r[2] = 0;
+    if (sel == 1) e = emin_;
+    if (sel == 2) e = emax_;
+    if (sel == 3) r[2] = bit(n_ - 1);
+    r[1] = vec_pack(e, eb_);
+  }
+  // Every significand at exponent 0 (the significand datapath sees nothing else: the exponent
+  // path is a negation), when there are at most kMaxExhaustive.
+  uint64_t exhaustive_count() const override { return bit(n_ - 1) <= kMaxExhaustive ? bit(n_ - 1) : 0; }
+  void exhaustive(uint64_t i, VecRow& r) const override {
+    r[0] = 0;
+    r[1] = 0;
+    r[2] = bit(n_ - 1) | i;
+  }
+
+ private:
+  RecipConfig c_;
+  RecipUnit unit_;
+  int n_, o_, eb_, emin_, emax_;
+  VecLayout lay_;
+};
+
+}  // namespace
+
+std::vector<VectorUnitInfo> builtin_vector_units() {
+  return {
+      {"recip", "fxr_recip", "reciprocal unit 1/w (fxr::recip)",
+       [](const Config& c) { return std::make_unique<RecipVectors>(c); }},
+      {"div", "fxr_div", "per-pixel significand divider (div_sig)",
+       [](const Config& c) { return std::make_unique<DivVectors>(c); }},
+  };
+}
+
+}  // namespace fxr
