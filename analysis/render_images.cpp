@@ -1,0 +1,96 @@
+// Images of the render report (analysis/render_images.hpp).
+#include "analysis/render_images.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fxr {
+
+namespace {
+
+// Paints fragments in draw order (the last one that passed the depth test wins). `texel(f, k,
+// size)` gives the texel index of varying k of fragment f along an axis of `size` texels.
+template <class Frag, class Texel>
+Image paint(const Scene& sc, const std::vector<Frag>& frags, Texel texel) {
+  const DrawState& st = sc.state;
+  Image img(st.viewport_w, st.viewport_h, sc.background);
+  const auto& tex = sc.texture;
+  for (const auto& f : frags) {
+    const int x = f.x - st.viewport_x, y = f.y - st.viewport_y;
+    if (x < 0 || y < 0 || x >= img.width || y >= img.height) continue;
+    img.at(x, y) = sc.u_varying < 0 || sc.v_varying < 0
+                       ? pack_rgba(192, 192, 192)  // no texture coordinates: flat grey
+                       : texture_fetch(tex, texel(f, sc.u_varying, tex.image.width),
+                                            texel(f, sc.v_varying, tex.image.height));
+  }
+  return img;
+}
+
+}  // namespace
+
+// The texture address unit on the model's fragments: exact floor(u·W) on the FxFloat codes.
+Image shade_model(const Scene& sc, const FrameOutput& fo) {
+  return paint(sc, fo.fragments, [&](const Fragment& f, int k, int size) {
+    return texel_index(f.var[k], size, sc.texture.wrap);
+  });
+}
+
+Image shade_reference(const Scene& sc, const RefFrame& rf) {
+  return paint(sc, rf.fragments, [&](const RefFragment& f, int k, int size) {
+    return texel_index_ref(f.var[k], size, sc.texture.wrap);
+  });
+}
+
+// Depth codes → grey, normalised to the range of written codes (nearest = brightest, 255;
+// farthest written = 48); never-written pixels (the cleared maximum code) are black.
+Image depth_image(const FrameOutput& fo, uint32_t clear_code, uint32_t* lo_out, uint32_t* hi_out) {
+  Image img(fo.width, fo.height, pack_rgba(0, 0, 0));
+  uint32_t lo = UINT32_MAX, hi = 0;
+  for (uint32_t c : fo.depth)
+    if (c != clear_code) lo = std::min(lo, c), hi = std::max(hi, c);
+  *lo_out = lo;
+  *hi_out = hi;
+  for (int y = 0; y < fo.height; ++y)
+    for (int x = 0; x < fo.width; ++x) {
+      const uint32_t c = fo.depth[(size_t)y * fo.width + x];
+      if (c == clear_code) continue;
+      const double t = hi > lo ? (double)(hi - c) / (double)(hi - lo) : 1.0;
+      const uint32_t g = 48 + (uint32_t)std::lround(t * 207);
+      img.at(x, y) = pack_rgba(g, g, g);
+    }
+  return img;
+}
+
+// Error heat map: log10 of the texel error of the visible fragment, 10^-6 (dark blue) …
+// 1 texel (red) and beyond (white); no fragment: black.
+Image heat_image(const std::vector<double>& heat, int w, int h) {
+  Image img(w, h, pack_rgba(0, 0, 0));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double e = heat[(size_t)y * w + x];
+      if (e < 0) continue;
+      if (e >= 1) {
+        img.at(x, y) = pack_rgba(255, 255, 255);
+        continue;
+      }
+      const double t = std::clamp((std::log10(std::max(e, 1e-12)) + 6.0) / 6.0, 0.0, 1.0);  // 0 … 1
+      // blue → cyan → green → yellow → red
+      const double r = std::clamp(4 * t - 2, 0.0, 1.0), g = t < 0.75 ? std::clamp(4 * t - 0.5, 0.0, 1.0) : 4 - 4 * t,
+                   b = std::clamp(1.5 - 4 * t, 0.0, 1.0);
+      img.at(x, y) = pack_rgba((uint32_t)std::lround(40 + 215 * r), (uint32_t)std::lround(40 + 215 * g),
+                                    (uint32_t)std::lround(60 + 195 * b));
+    }
+  return img;
+}
+
+Image side_by_side(const Image& a, const Image& b) {
+  const int gap = 8;
+  Image img(a.width + gap + b.width, std::max(a.height, b.height), pack_rgba(255, 255, 255));
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) img.at(x, y) = a.at(x, y);
+  for (int y = 0; y < b.height; ++y)
+    for (int x = 0; x < b.width; ++x) img.at(a.width + gap + x, y) = b.at(x, y);
+  return img;
+}
+
+}  // namespace fxr

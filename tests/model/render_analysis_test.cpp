@@ -1,0 +1,119 @@
+// The render report's analysis component (analysis/): statistics, ulps, coverage sets, exact
+// spot checks and the report files. Expected values come from arithmetic done here by hand
+// (percentiles of 1..100, powers of two) or from the documented bounds of the model judged by
+// exact GMP arithmetic (docs/pipeline.md: ≤ 0.5 LSB depth and ≤ ½ ulp + ε varyings on the
+// snapped triangle).
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "analysis/error_stats.hpp"
+#include "analysis/render_analysis.hpp"
+#include "analysis/render_report.hpp"
+#include "frontend/scene.hpp"
+#include "model/unit/raster_unit.hpp"
+
+namespace {
+
+fxr::Scene small_default_scene() {
+  fxr::SceneOptions so;
+  so.width = 96;
+  so.height = 64;
+  so.no_optional = true;  // no bunny: fast
+  return fxr::default_scene(so);
+}
+
+TEST(ErrorStats, NearestRankPercentilesMeanAndRmsOfOneToHundred) {
+  fxr::ErrStat e;
+  for (int i = 100; i >= 1; --i) e.add(i);
+  e.add(NAN);  // ignored
+  e.add(INFINITY);
+  EXPECT_EQ(e.n, 100u);
+  EXPECT_EQ(e.max, 100);
+  EXPECT_DOUBLE_EQ(e.mean(), 50.5);
+  EXPECT_DOUBLE_EQ(e.rms(), std::sqrt(338350.0 / 100));  // Σ i² = 100·101·201/6
+  EXPECT_EQ(e.pct(0.5), 50);
+  EXPECT_EQ(e.pct(0.99), 99);
+  EXPECT_EQ(e.pct(1.0), 100);
+}
+
+TEST(ErrorStats, UlpIsThePowerOfTwoOfTheValuesBinade) {
+  EXPECT_EQ(fxr::ulp_of(1.0, 24), std::ldexp(1.0, -23));
+  EXPECT_EQ(fxr::ulp_of(1.999, 24), std::ldexp(1.0, -23));
+  EXPECT_EQ(fxr::ulp_of(0.75, 24), std::ldexp(1.0, -24));
+  EXPECT_EQ(fxr::ulp_of(-3.0, 8), std::ldexp(1.0, -6));
+  EXPECT_EQ(fxr::ulp_of(0.0, 24), 0.0);
+  fxr::FxFloat f;
+  f.sig = 3;
+  f.exp = -2;
+  f.neg = true;
+  EXPECT_EQ(fxr::fx_to_double(f), -0.75);
+}
+
+TEST(RenderAnalysis, CoverageDiffCountsTheSymmetricDifference) {
+  std::vector<fxr::Fragment> m(3);
+  std::vector<fxr::RefFragment> r(3);
+  for (int i = 0; i < 3; ++i) {
+    m[i].x = r[i].x = i;
+    m[i].y = r[i].y = 7;
+    m[i].prim = r[i].prim = 1;
+  }
+  fxr::CoverageDiff same = fxr::compare_coverage(m, r);
+  EXPECT_EQ(same.common, 3u);
+  EXPECT_EQ(same.model_only + same.ref_only, 0u);
+  r[2].x = 5;  // model has (1, 2, 7), reference has (1, 5, 7)
+  fxr::CoverageDiff d = fxr::compare_coverage(m, r);
+  EXPECT_EQ(d.common, 2u);
+  EXPECT_EQ(d.model_only, 1u);
+  EXPECT_EQ(d.ref_only, 1u);
+  ASSERT_EQ(d.examples.size(), 2u);
+  EXPECT_EQ(d.examples[0]["x"], 2);
+  EXPECT_EQ(d.examples[0]["only_in"], "model");
+  EXPECT_EQ(d.examples[1]["x"], 5);
+}
+
+TEST(RenderAnalysis, ExactSpotChecksStayWithinTheModelsRoundingBounds) {
+  const fxr::Scene sc = small_default_scene();
+  const fxr::FrameOutput fo = fxr::run_raster_unit(sc.config, sc.state, sc.tris);
+  ASSERT_GT(fo.fragments.size(), 1000u);
+  const fxr::SpotChecks s = fxr::exact_spot_checks(sc, fo, 500);
+  EXPECT_GE(s.checked, 500u);
+  EXPECT_EQ(s.not_covered_exactly, 0u);
+  EXPECT_LE(s.depth_lsb.max, 0.5);  // one correct rounding of the exact plane value
+  for (const auto& v : s.var_ulp) EXPECT_LT(v.max, 0.51) << "½ ulp of the divider + the operand pre-rounding";
+}
+
+TEST(RenderAnalysis, ReferenceComparisonCoversEveryFragmentAndMapsTheHeat) {
+  const fxr::Scene sc = small_default_scene();
+  const fxr::FrameOutput fo = fxr::run_raster_unit(sc.config, sc.state, sc.tris);
+  const fxr::RenderErrors e = fxr::compare_to_reference(sc, fo);
+  EXPECT_EQ(e.depth_lsb.n + e.ref_invalid, fo.fragments.size());
+  ASSERT_EQ(e.heat.size(), (size_t)sc.state.viewport_w * sc.state.viewport_h);
+  size_t painted = 0;
+  for (double h : e.heat) painted += h >= 0;
+  EXPECT_GT(painted, 0u);
+  EXPECT_LE(painted, fo.fragments.size());
+}
+
+TEST(RenderReport, WritesEveryFileAndTheDumpHasOneLinePerFragment) {
+  const fxr::Scene sc = small_default_scene();
+  fxr::RenderOptions o;
+  o.out = (std::filesystem::temp_directory_path() / "fxr_render_report_test").string();
+  std::filesystem::remove_all(o.out);
+  o.spot_checks = 100;
+  const fxr::RenderSummary r = fxr::render_with_report(sc, o);
+  EXPECT_TRUE(r.all_accounted);
+  for (const char* f : {"image.png", "reference.png", "depth.png", "image_affine.png", "side_by_side.png",
+                        "fragments.csv", "fragments.json", "stats.json", "report.md", "report.json"})
+    EXPECT_TRUE(std::filesystem::file_size(std::filesystem::path(o.out) / f) > 0) << f;
+  std::ifstream csv(std::filesystem::path(o.out) / "fragments.csv");
+  size_t rows = 0, comments = 0;
+  for (std::string line; std::getline(csv, line);) (line.rfind("#", 0) == 0 ? comments : rows) += 1;
+  EXPECT_GT(comments, 0u);
+  EXPECT_EQ(rows, r.fragments + 1);  // + the header row
+}
+
+}  // namespace
