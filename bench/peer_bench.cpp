@@ -1,4 +1,4 @@
-// Model speed against two baselines measured in the same run (issue #3, SPEC §9):
+// Model speed against two baselines measured in the same run (docs/references.md#spec-speed):
 //   - float:    the plain float32 rasterizer (fxr_peer, reference/float_raster.hpp), one thread;
 //   - llvmpipe: Mesa through OSMesa with LP_NUM_THREADS=0 (rasterises in the calling thread),
 //               context creation, shader compilation and vertex upload excluded; each iteration

@@ -267,7 +267,8 @@ Camera parse_camera(const Node& n, double aspect) {
     if (!(aspect > 0)) n.at("aspect").fail("must be > 0");
   }
   c.view = glm::lookAtRH(eye, target, up);
-  // 0 ≤ z_c ≤ w_c clip volume (D3D / Vulkan depth convention), as the clipper expects.
+  // 0 ≤ z_c ≤ w_c clip volume (D3D / Vulkan depth convention, docs/references.md#d3d11-clip),
+  // as the clipper expects.
   c.proj = glm::perspectiveRH_ZO(glm::radians(fovy), aspect, zn, zf);
   return c;
 }

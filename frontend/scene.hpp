@@ -28,7 +28,7 @@ namespace fxr {
 // Version of the scene JSON format (field "version").
 inline constexpr int kSceneFormatVersion = 1;
 
-// Texture-coordinate generation for meshes without UVs (seed 002, §11.2.1).
+// Texture-coordinate generation for meshes without UVs (docs/references.md#seed-002-texgen).
 enum class TexGen : uint8_t { Auto, None, Planar, Spherical, Cylindrical, Cube };
 
 // Per-object record kept for reports.
@@ -64,8 +64,8 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
                   const SceneOptions& opt = {});
 // Reads and parses a scene file. Throws ConfigError (cannot open, syntax, fields).
 Scene load_scene(const std::string& path, const SceneOptions& opt = {});
-// The embedded default scene (seed 000's checkerboard face at an angle, and the Stanford
-// bunny from glmark2-data when installed; a note says so when it is not).
+// The embedded default scene (the checkerboard face at an angle of docs/references.md#seed-000,
+// and the Stanford bunny from glmark2-data when installed; a note says so when it is not).
 Scene default_scene(const SceneOptions& opt = {});
 // The JSON text of the embedded default scene.
 const char* default_scene_json();
@@ -83,12 +83,13 @@ std::string f32_to_hex(float f);
 // Texture-coordinate generation from a point q already normalised to the mesh's bounding box
 // (q = (p − box centre) / largest half extent, so each |q_i| ≤ 1) and permuted so that the
 // chosen axis is q.z ("texgen_axis": x → (y, z, x), y → (z, x, y), z → (x, y, z)).
-// Seed 002 formulas:
+// Formulas of docs/references.md#seed-002-texgen:
 //   planar:           (u, v) = ((1 + q.x) / 2, (1 + q.y) / 2)   (orthographic along q.z)
 //   spherical:        u = (π + atan2(y, x)) / 2π,  v = (π − acos(z / |q|)) / π   (|q| = 0 → v = ½)
 //   cylindrical:      u = (π + atan2(y, x)) / 2π,  v = (1 + z) / 2
 //   cube:             face by the largest |component|, face coordinates (s, t) ∈ [0, 1] by
-//                     the OpenGL table of seed 002, packed into a 3 × 2 atlas:
+//                     the OpenGL table (docs/references.md#seed-002-cube), packed into a
+//                     3 × 2 atlas:
 //                     column = face % 3, row = face / 3 with faces +x, −x, +y, −y, +z, −z
 //                     = 0..5; u = (column + s) / 3, v = (row + t) / 2.
 //   Auto / None:      (0, 0)

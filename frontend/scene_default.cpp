@@ -1,7 +1,8 @@
-// The embedded default scene (README command 1): seed 000's example — a checkerboard on one
-// face of a cube seen at an angle, two triangles whose affine interpolation visibly breaks
-// along the shared diagonal — and a real mesh, the Stanford bunny of glmark2-data, with a
-// texgen checker (optional: left out with a note when the package is not installed).
+// The embedded default scene (README command 1): the example of docs/references.md#seed-000 —
+// a checkerboard on one face of a cube seen at an angle, two triangles whose affine
+// interpolation visibly breaks along the shared diagonal — and a real mesh, the Stanford bunny
+// of glmark2-data, with a texgen checker (optional: left out with a note when the package is
+// not installed).
 #include "frontend/scene.hpp"
 
 namespace fxr {

@@ -1,5 +1,6 @@
 // frontend/texture.hpp — textures for the shaded output image, the texture address computation
-// (seed 002: texel = floor(u·W), wrap or clamp, nearest), and PNG images.
+// (docs/references.md#seed-002-lookup: texel = floor(u·W), wrap or clamp, nearest), and PNG
+// images.
 //
 // Data flow: the scene front end builds a Texture (procedural checker or PNG); the render
 // command looks each fragment's u, v up with texel_index(), which works on the FxFloat codes

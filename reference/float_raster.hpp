@@ -1,5 +1,5 @@
 // reference/float_raster.hpp — the plain float rasterizer: the speed baseline of the model
-// (SPEC §9), independent of the model's code and formats.
+// (docs/references.md#spec-speed), independent of the model's code and formats.
 //
 // What a straightforward software rasterizer does in float32: per triangle, 1/w, the divide,
 // the viewport transform (no snapping), float32 edge functions stepped along each row of the

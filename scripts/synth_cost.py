@@ -12,9 +12,10 @@ rtl/fxr_<unit>_*.sv files it instantiates) with the parameters set by `chparam`:
                                                         -> logic cells, Fmax (MHz) or "does not fit"
 
 Depth comes from the generic netlist: after synth_ice40, ltp does not treat SB_DFF cells as
-flip-flops (TOOLCHAIN.md). Results are cached per configuration in --cache/<key>.json, where
-the key hashes the unit, the parameters, the RTL and package text and this flow, so a rerun
-only synthesises what changed. Writes --out CSV: id,label,lut4,depth,ice40_lc,fmax_mhz,fit.
+flip-flops (docs/references.md#toolchain-yosys). Results are cached per configuration in
+--cache/<key>.json, where the key hashes the unit, the parameters, the RTL and package text and
+this flow, so a rerun only synthesises what changed. Writes --out CSV:
+id,label,lut4,depth,ice40_lc,fmax_mhz,fit.
 """
 import argparse
 import glob

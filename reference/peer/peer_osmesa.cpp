@@ -215,8 +215,9 @@ struct OsmesaPeer::Impl {
 OsmesaPeer::OsmesaPeer(const PeerOptions& opt) : impl_(new Impl) {
   Impl& m = *impl_;
   m.opt = opt;
-  // The peer is llvmpipe, never softpipe (not watertight: ANCHORS). Both variables are read
-  // when OSMesa creates its gallium screen, at the first context of the process.
+  // The peer is llvmpipe, never softpipe (not watertight: docs/references.md#peer-fill-rule).
+  // Both variables are read when OSMesa creates its gallium screen, at the first context of the
+  // process.
   setenv("GALLIUM_DRIVER", "llvmpipe", 1);
   if (opt.lp_num_threads >= 0) setenv("LP_NUM_THREADS", std::to_string(opt.lp_num_threads).c_str(), 1);
   const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,

@@ -20,8 +20,8 @@
 //     z_c / w_c, clip volume 0 ≤ z_c ≤ w_c, like the model. Read back as float32 (the depth
 //     buffer is GL_DEPTH_COMPONENT32F, cleared to 1).
 //   - llvmpipe is only the peer for coverage and sanity: its varyings are off the exact value by
-//     up to 1.1e-3 on u, v in 0..16 (ANCHORS, "Measured here"). Accuracy is judged against exact
-//     arithmetic elsewhere.
+//     up to 1.1e-3 on u, v in 0..16 (docs/references.md#peer-disagreement). Accuracy is judged
+//     against exact arithmetic elsewhere.
 #pragma once
 
 #include <cstdint>

@@ -13,7 +13,8 @@ namespace fxr::peer {
 
 namespace {
 
-// Texture coordinates span [0, kUvRange] (ANCHORS' llvmpipe accuracy note is for u, v in 0..16).
+// Texture coordinates span [0, kUvRange] (the llvmpipe accuracy figure of
+// docs/references.md#peer-disagreement is for u, v in 0..16).
 constexpr double kUvRange = 16.0;
 
 DrawState state(int size, int num_varyings) {

@@ -205,7 +205,8 @@ TEST(Texgen, PlanarSphericalCylindricalMatchHandValues) {
 }
 
 TEST(Texgen, CubeFollowsTheOpenGLFaceTable) {
-  // OpenGL face table (seed 002): +z: (sc, tc) = (+x, −y); −x: (+z, −y); +y: (+x, +z).
+  // OpenGL face table (docs/references.md#seed-002-cube):
+  // +z: (sc, tc) = (+x, −y); −x: (+z, −y); +y: (+x, +z).
   // s = (1 + sc/|ma|)/2; atlas: face f at column f % 3, row f / 3 (+x, −x, +y, −y, +z, −z).
   {
     const double s = (1 + 0.2 / 0.9) / 2, t = (1 + 0.3 / 0.9) / 2;  // +z face = 4: column 1, row 1

@@ -26,7 +26,8 @@ using namespace fxr::peer;
 
 namespace {
 
-// llvmpipe's subpixel grid: 8 fraction bits (GL_SUBPIXEL_BITS, checked below; ANCHORS).
+// llvmpipe's subpixel grid: 8 fraction bits (GL_SUBPIXEL_BITS, checked below;
+// docs/references.md#peer-fill-rule).
 constexpr int kPeerSubpixelBits = 8;
 constexpr int64_t kSub = int64_t(1) << kPeerSubpixelBits;
 constexpr int64_t kHalfPixel = kSub / 2;
@@ -442,8 +443,9 @@ std::vector<PeerScene> perspective_scenes() {
   return s;
 }
 
-// ANCHORS ("Measured here"): llvmpipe's perspective-correct varyings are off the exact value by
-// up to 1.1e-3 for u, v in 0..16 across a grazing plane. Scenes here keep u, v in [0, 16].
+// docs/references.md#peer-disagreement: llvmpipe's perspective-correct varyings are off the
+// exact value by up to 1.1e-3 for u, v in 0..16 across a grazing plane. Scenes here keep u, v
+// in [0, 16].
 constexpr double kLlvmpipeVaryingError = 1.1e-3;
 constexpr float kUvMax = 16.0f;
 
@@ -516,8 +518,9 @@ TEST(PeerPerspective, GridVerticesWithPowerOfTwoWCoverExactly) {
 
 // llvmpipe interpolates from the unsnapped float positions (its error against the exact value
 // from unsnapped positions is ~10× smaller than against the exact value from snapped ones).
-// ANCHORS' bound (1.1e-3 for u, v in 0..16) was measured on a grazing plane: asserted there
-// only; the other scenes are reported (random triangles with w ratios up to 16 exceed it).
+// The bound of docs/references.md#peer-disagreement (1.1e-3 for u, v in 0..16) was measured on a
+// grazing plane: asserted there only; the other scenes are reported (random triangles with w
+// ratios up to 16 exceed it).
 TEST(PeerPerspective, GrazingPlaneVaryingsWithinAnchoredLlvmpipeErrorOfExact) {
   FXR_PEER_OR_SKIP(peer, true);
   std::vector<PeerScene> scenes = perspective_scenes();
@@ -548,8 +551,8 @@ TEST(PeerPerspective, GrazingPlaneVaryingsWithinAnchoredLlvmpipeErrorOfExact) {
 }
 
 // Clip-space scenes off the grid: llvmpipe snaps with a float32 divide and viewport transform,
-// exact snapping is rational round-to-nearest-even (ANCHORS: they differ for about 3 % of
-// vertices at 4096 px), so only near-total agreement is certain. Printed: the counts.
+// exact snapping is rational round-to-nearest-even (docs/references.md#snapping: they differ for
+// about 3 % of vertices at 4096 px), so only near-total agreement is certain. Printed: the counts.
 TEST(PeerPerspective, CoverageAgreesWithExactSnappedCoverage) {
   FXR_PEER_OR_SKIP(peer, true);
   for (const PeerScene& s : perspective_scenes()) {
@@ -617,8 +620,9 @@ ModelImage model_image(const DrawState& st, const std::vector<ClipTriangle>& tri
   return m;
 }
 
-// The model's output varyings are budgeted at 2^-20 of the u, v range (the SPEC aims at
-// 24 bits; the model's accuracy against exact arithmetic is tested in tests/model, not here).
+// The model's output varyings are budgeted at 2^-20 of the u, v range (the product aims at
+// 24 bits, docs/references.md#vulkan-cts; the model's accuracy against exact arithmetic is
+// tested in tests/model, not here).
 constexpr double kModelVaryingBudget = kUvMax / (1 << 20);
 
 }  // namespace
@@ -651,7 +655,8 @@ TEST(PeerModel, OrthographicGridCoverageIdenticalToLlvmpipe) {
 }
 
 // (b) Perspective scenes: coverage agreement and varying differences, printed; asserted: coverage
-// agreement above 99.9 %, and on the grazing plane (the scene ANCHORS' llvmpipe figure is for)
+// agreement above 99.9 %, and on the grazing plane (the scene the llvmpipe figure of
+// docs/references.md#peer-disagreement is for)
 // |model − llvmpipe| ≤ 1.1e-3 (llvmpipe) + |exact(snapped) − exact(unsnapped)| (llvmpipe
 // interpolates from unsnapped positions, the model from snapped ones; computed per pixel in
 // double) + the model's budget, at every pixel both drew from the same triangle.
