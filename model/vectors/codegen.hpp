@@ -1,0 +1,31 @@
+// model/vectors/codegen.hpp — code generated from a vector layout, so that no field layout is
+// written twice (docs/vectors.md, "Generated layouts"):
+//   * the SystemVerilog package fxr_vec_pkg: per unit, the bit offset and width of every field
+//     of a vector line as localparams, and packed structs of the whole line and of its output
+//     part, which plain-Verilog testbenches (tb/icarus/) overlay on a $readmemh word;
+//   * a C++ port adapter per unit for the Verilator testbenches (tb/): the vector fields in
+//     file order, input fields driven onto the ports <field>_i and output ports <field>_o
+//     sampled into the fields.
+// Names: unit "recip", field "in_sig" → RecipVecInSigOff / RecipVecInSigBits (localparams),
+// recip_vec_t / recip_vec_out_t (structs), fxr::tb::gen::RecipPortsGen<Dut> (C++).
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include "model/config/config.hpp"
+#include "model/vectors/vectors.hpp"
+
+namespace fxr {
+
+// The localparams and packed structs of one unit's layout (no package wrapper).
+void emit_sv_vector_layout(std::ostream& os, const std::string& unit, const VecLayout& l);
+
+// The package fxr_vec_pkg with the layouts of every unit of vector_units() at `cfg`.
+void emit_sv_vector_package(std::ostream& os, const Config& cfg);
+
+// A self-contained C++ header with fxr::tb::gen::<Unit>PortsGen<Dut>: fields(), drive(), sample().
+// Port widths up to 64 bits (Verilator's scalar port types).
+void emit_verilator_ports(std::ostream& os, const std::string& unit, const VecLayout& l);
+
+}  // namespace fxr
