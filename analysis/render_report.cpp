@@ -108,7 +108,7 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
      << (dlo <= dhi ? std::to_string(dlo) + "…" + std::to_string(dhi) : std::string("none written"))
      << " → grey, near = bright) | [depth.png](depth.png) |\n";
   if (!o.no_affine_image)
-    md << "| " << other_mode["interp"].get<std::string>() << " interpolation (seed 000: "
+    md << "| " << other_mode["interp"].get<std::string>() << " interpolation (docs/references.md#seed-000: "
        << (o.affine ? "the right image" : "the wrong image") << ") | [" << other_mode["image"].get<std::string>() << "]("
        << other_mode["image"].get<std::string>() << ") |\n| perspective ‖ affine | [side_by_side.png](side_by_side.png) |\n";
   if (sc.u_varying >= 0)

@@ -73,13 +73,13 @@ fxr::app::Runner setup(CLI::App& sub) {
   auto o = std::make_shared<Opts>();
   sub.add_option("scene", o->scene, "scene JSON file (docs/scene-format.md)");
   sub.add_flag("--default", o->use_default,
-               "render the embedded default scene (seed 000's checkerboard face at an angle + the glmark2 bunny)");
+               "render the embedded default scene (a checkerboard face at an angle, docs/references.md#seed-000, + the glmark2 bunny)");
   sub.add_option("--out", o->out, "output directory (created): image.png, reference.png, depth.png, "
                                   "image_affine.png, side_by_side.png, fragments.csv/.json, stats.json, "
                                   "report.md/.json")
       ->required();
   sub.add_option("--config", o->config, "configuration JSON whose fields override the scene's configuration");
-  sub.add_flag("--affine", o->affine, "interpolate varyings affinely in screen space (seed 000's wrong image) "
+  sub.add_flag("--affine", o->affine, "interpolate varyings affinely in screen space (the wrong image of docs/references.md#seed-000) "
                                       "for the main image; the extra image is then the perspective one");
   sub.add_flag("--no-bunny", o->no_bunny, "leave out optional meshes (the default scene's bunny)");
   sub.add_flag("--no-affine-image", o->no_affine_image, "do not render the second image in the other interpolation mode");
