@@ -40,7 +40,7 @@ int run(const Opts& o) {
     } catch (const json::parse_error& e) {
       throw fxr::ConfigError(o.config + ": not valid JSON: " + e.what());
     }
-    fxr::config_from_json(cj, o.config);  // validates the file on its own (fields named)
+    fxr::config_fields_from_json(cj, o.config);  // types and ranges of the file on its own (fields named)
     json merged = fxr::config_to_json(sc.config);
     merged.merge_patch(cj);
     sc.config = fxr::config_from_json(merged, o.config);

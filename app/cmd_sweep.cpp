@@ -18,6 +18,7 @@
 
 #include "command.hpp"
 #include "model/config/config.hpp"
+#include "model/config/validate.hpp"
 #include "model/arith/div.hpp"
 #include "model/stages/recip.hpp"
 #include "analysis/sweep_table.hpp"
@@ -124,6 +125,7 @@ SweepTable sweep_recip(const Opts& o) {
   const fxr::RecipConfig def;
   for (size_t i = 0; i < configs.size(); ++i) {
     const auto& c = configs[i];
+    fxr::validate(c, "recip sweep: " + fxr::recip_label(c));  // ranges and recip rules
     SweepRow r = make_row("recip", c, def, fxr::recip_label(c));
     const fxr::RecipCost k = fxr::recip_cost(c);
     const fxr::RecipErrorStats e = fxr::recip_measure(c);
@@ -170,6 +172,7 @@ SweepTable sweep_div(const Opts& o, uint64_t count) {
   const fxr::DivConfig def;
   for (size_t i = 0; i < configs.size(); ++i) {
     const auto& c = configs[i];
+    fxr::validate(c, "div sweep: " + fxr::div_label(c));  // ranges and div rules (model/config/validate.hpp)
     SweepRow r = make_row("div", c, def, fxr::div_label(c));
     const fxr::DivCost k = fxr::div_cost(c);
     const fxr::DivErrorStats e = fxr::div_measure(c, count, o.seed);

@@ -125,6 +125,75 @@ void from_json_params(const nlohmann::json& j, Cfg& cfg, const std::string& wher
   r.reject_unknown();
 }
 
+// ---- equality and hashing from visit() ------------------------------------------------------
+// Every unit configuration compares and hashes through its visit(): a parameter added to visit()
+// is compared and hashed without touching these (no field list written a second time).
+
+// Upper bound on the parameters of one unit (static storage for the collector below).
+inline constexpr int kMaxUnitParams = 32;
+
+// Collects every parameter's value in visit() order (choices as their index); no allocation.
+struct ValueCollector {
+  int values[kMaxUnitParams] = {};
+  int n = 0;
+  void put(int v) {
+    if (n == kMaxUnitParams) throw std::logic_error("ValueCollector: more than kMaxUnitParams parameters");
+    values[n++] = v;
+  }
+  void integer(const char*, int& value, int, int, const char*) { put(value); }
+  template <class E>
+  void choice(const char*, E& value, std::initializer_list<const char*>, const char*) {
+    put(static_cast<int>(value));
+  }
+};
+
+template <class Cfg>
+ValueCollector param_values(const Cfg& cfg) {
+  ValueCollector c;
+  const_cast<Cfg&>(cfg).visit(c);  // visit does not modify through ValueCollector
+  return c;
+}
+
+// True when every parameter listed by visit() is equal.
+template <class Cfg>
+bool params_equal(const Cfg& a, const Cfg& b) {
+  const ValueCollector va = param_values(a), vb = param_values(b);
+  if (va.n != vb.n) return false;
+  for (int i = 0; i < va.n; ++i)
+    if (va.values[i] != vb.values[i]) return false;
+  return true;
+}
+
+// FNV-1a (64-bit) over the parameter values in visit() order: deterministic on every platform.
+inline uint64_t fnv1a_ints(uint64_t h, const int* v, int n) {
+  constexpr uint64_t kFnvPrime = 0x100000001b3ull;
+  constexpr int kByteBits = 8;
+  constexpr uint32_t kByteMask = 0xffu;
+  for (int i = 0; i < n; ++i) {
+    const uint32_t u = static_cast<uint32_t>(v[i]);
+    for (int byte = 0; byte < (int)sizeof(u); ++byte) {
+      h ^= (u >> (kByteBits * byte)) & kByteMask;
+      h *= kFnvPrime;
+    }
+  }
+  return h;
+}
+inline constexpr uint64_t kFnvOffsetBasis = 0xcbf29ce484222325ull;
+
+template <class Cfg>
+uint64_t params_hash(const Cfg& cfg) {
+  const ValueCollector v = param_values(cfg);
+  return fnv1a_ints(kFnvOffsetBasis, v.values, v.n);
+}
+
+// Hash functor for unordered containers keyed by a unit configuration.
+struct ParamsHash {
+  template <class Cfg>
+  size_t operator()(const Cfg& c) const {
+    return static_cast<size_t>(params_hash(c));
+  }
+};
+
 // SystemVerilog localparams `localparam int <Prefix><CamelName> = <value>;` with the doc as
 // a comment (choices are emitted as their index, with the names in the comment).
 void emit_sv_params(std::ostream& os, const std::string& prefix, const std::vector<ParamRow>& rows);

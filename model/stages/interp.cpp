@@ -61,13 +61,6 @@ void interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& t
   }
 }
 
-void check_interp_config(const Config& cfg) {
-  if (cfg.div.quot_bits != cfg.raster.varying_out_sig_bits)
-    throw ConfigError("div: field 'quot_bits' (" + std::to_string(cfg.div.quot_bits) +
-                      ") must equal raster field 'varying_out_sig_bits' (" +
-                      std::to_string(cfg.raster.varying_out_sig_bits) + "): the divider produces the output varyings");
-}
-
 DepthSetup depth_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup& t) {
   const int64_t M = (int64_t)depth_max_code(cfg.raster);
   int64_t q[3];

@@ -25,7 +25,7 @@
 
 namespace fxr {
 
-// P(i, j) = c + i·dx + j·dy over pixel indices (exact; widths checked by check_raster_widths).
+// P(i, j) = c + i·dx + j·dy over pixel indices (exact; widths checked by validate(), model/config/validate.hpp).
 struct Plane {
   i128 c = 0, dx = 0, dy = 0;
   i128 at(int i, int j) const { return c + (i128)i * dx + (i128)j * dy; }
@@ -94,7 +94,7 @@ inline FxFloat divide_varying(const DivConfig& dc, i128 N, int en, const DenNorm
   return out;
 }
 
-// Contract: throws ConfigError unless div.quot_bits == raster.varying_out_sig_bits.
-void check_interp_config(const Config& cfg);
+// div.quot_bits is derived from raster.varying_out_sig_bits (model/config/validate.hpp:
+// derive_widths; validate() rejects a configuration where they differ).
 
 }  // namespace fxr

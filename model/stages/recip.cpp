@@ -10,6 +10,7 @@
 
 #include "model/arith/fixed.hpp"
 #include "model/config/param.hpp"
+#include "model/config/validate.hpp"
 
 namespace fxr {
 
@@ -29,26 +30,9 @@ uint64_t pow2(int e) { return uint64_t{1} << e; }
 
 }  // namespace
 
-bool operator==(const RecipConfig& a, const RecipConfig& b) {
-  return a.in_sig_bits == b.in_sig_bits && a.out_sig_bits == b.out_sig_bits &&
-         a.exp_bits == b.exp_bits && a.seed_index_bits == b.seed_index_bits &&
-         a.seed_frac_bits == b.seed_frac_bits && a.nr_steps == b.nr_steps &&
-         a.nr_frac_bits == b.nr_frac_bits && a.correction == b.correction;
-}
+bool operator==(const RecipConfig& a, const RecipConfig& b) { return params_equal(a, b); }
 
-void recip_validate(const RecipConfig& c) {
-  // Per-field ranges first (the same ones JSON loading enforces).
-  nlohmann::json j = to_json_params(c);
-  RecipConfig tmp;
-  from_json_params(j, tmp, "recip");
-  if (c.nr_frac_bits <= c.out_sig_bits)
-    throw ConfigError("recip: field 'nr_frac_bits': " + std::to_string(c.nr_frac_bits) +
-                      " must exceed out_sig_bits (" + std::to_string(c.out_sig_bits) +
-                      "): the final rounding needs a bit below the output lsb");
-  if (c.seed_index_bits >= c.in_sig_bits)
-    throw ConfigError("recip: field 'seed_index_bits': " + std::to_string(c.seed_index_bits) +
-                      " must be below in_sig_bits (" + std::to_string(c.in_sig_bits) + ")");
-}
+void recip_validate(const RecipConfig& c) { validate(c, "recip"); }
 
 std::vector<uint64_t> recip_seed_table(const RecipConfig& c) {
   recip_validate(c);

@@ -58,10 +58,10 @@ struct RecipConfig {
 bool operator==(const RecipConfig& a, const RecipConfig& b);
 inline bool operator!=(const RecipConfig& a, const RecipConfig& b) { return !(a == b); }
 
-// Cross-field checks the per-field ranges cannot express; throws ConfigError naming the field:
-//   nr_frac_bits > out_sig_bits (the rounding needs at least one bit below the output lsb),
-//   seed_index_bits < in_sig_bits (the index is taken from the fraction of m).
-//   (The widest product, y · t, has 2·nr_frac_bits + 1 ≤ 97 bits: it fits 128.)
+// Equality from visit() (params_equal, model/config/param.hpp): keys the per-thread table cache.
+// recip_validate: validate(cfg, "recip") (model/config/validate.hpp): the per-field ranges and
+// the recip rules (nr_frac_bits > out_sig_bits, seed_index_bits < in_sig_bits); throws
+// ConfigError naming the field. (The widest product, y · t, has 2·nr_frac_bits + 1 ≤ 97 bits.)
 void recip_validate(const RecipConfig& cfg);
 
 // I/O exponent range (exponent of the leading one): [−2^(exp_bits−1), 2^(exp_bits−1) − 1].

@@ -6,31 +6,6 @@
 
 namespace fxr {
 
-// Interpolator sums (raster.hpp) are Σ E_k·Q_k with Q_k of at most interp_block_bits + 1
-// signed bits (block-aligned 1/w, v/w) or z_frac_bits + 1 + depth bits (depth), plus 2 bits
-// for the three-term sum; they are held in i128.
-static constexpr int kI128ValueBits = 127;
-
-void check_raster_widths(const Config& cfg) {
-  const RasterConfig& r = cfg.raster;
-  if (edge_value_bits(r) > kEdgeValueMaxBits)
-    throw ConfigError("raster: fields 'window_int_bits' + 'subpixel_bits': edge values need " +
-                      std::to_string(edge_value_bits(r)) + " bits, more than the " +
-                      std::to_string(kEdgeValueMaxBits) + " the model holds (window_int_bits + max(subpixel_bits,1) <= 30)");
-  const int interp_bits = edge_value_bits(r) + r.interp_block_bits + 1 + 2;
-  if (interp_bits > kI128ValueBits)
-    throw ConfigError("raster: field 'interp_block_bits': interpolator sums need " + std::to_string(interp_bits) +
-                      " bits, more than " + std::to_string(kI128ValueBits));
-  if (r.z_frac_bits + 1 + r.depth_bits() > kEdgeValueMaxBits)
-    throw ConfigError("raster: field 'z_frac_bits': z·(2^depth_bits − 1) needs " +
-                      std::to_string(r.z_frac_bits + 1 + r.depth_bits()) + " bits, more than " +
-                      std::to_string(kEdgeValueMaxBits));
-  const int depth_sum_bits = edge_value_bits(r) + r.z_frac_bits + 1 + r.depth_bits() + 2;
-  if (depth_sum_bits > kI128ValueBits)
-    throw ConfigError("raster: field 'z_frac_bits': depth sums need " + std::to_string(depth_sum_bits) +
-                      " bits, more than " + std::to_string(kI128ValueBits));
-}
-
 PixelRect draw_rect(const DrawState& st) {
   PixelRect r;
   r.x0 = st.viewport_x;

@@ -50,9 +50,8 @@ constexpr int edge_value_bits(const RasterConfig& c) { return 2 * coord_bits(c) 
 // Edge values are held in int64_t.
 inline constexpr int kEdgeValueMaxBits = 63;
 
-// Contract: throws ConfigError naming the field when the configured widths exceed what the
-// raster stages hold (edge values in int64, interpolator sums in i128; see raster.hpp).
-void check_raster_widths(const Config& cfg);
+// The rules that keep edge values in int64 and the interpolator / depth sums in i128 are
+// checked by validate() (model/config/validate.hpp), which frame_begin calls.
 
 // ---- setup record ------------------------------------------------------------------------
 

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "model/config/validate.hpp"
 #include "model/stages/depth.hpp"
 #include "model/stages/interp.hpp"
 #include "model/stages/traverse.hpp"
@@ -10,8 +11,7 @@
 namespace fxr {
 
 void frame_begin(const Config& cfg, const DrawState& st, FrameOutput& f) {
-  check_raster_widths(cfg);
-  check_interp_config(cfg);
+  validate(cfg, "configuration");  // every range and cross-field rule (model/config/validate.hpp)
   if (st.num_varyings < 0 || st.num_varyings > kMaxVaryings)
     throw ConfigError("draw state: field 'num_varyings' = " + std::to_string(st.num_varyings) +
                       " is outside 0.." + std::to_string(kMaxVaryings));

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "model/arith/div.hpp"
+#include "model/config/validate.hpp"
 #include "model/stages/recip.hpp"
 
 namespace fxr {
@@ -114,6 +115,7 @@ const VectorUnitInfo& vector_unit(const std::string& name) {
 }
 
 std::unique_ptr<VectorModel> make_vector_model(const std::string& unit, const Config& cfg) {
+  validate(cfg, "configuration");  // every range and rule (model/config/validate.hpp)
   return vector_unit(unit).make(cfg);
 }
 
@@ -521,7 +523,14 @@ class DivVectors : public VectorModel {
     });
   }
   const VecLayout& layout() const override { return lay_; }
-  nlohmann::json config_json() const override { return unit_config_json("div", to_json_params(c_)); }
+  nlohmann::json config_json() const override {
+    nlohmann::json j = unit_config_json("div", to_json_params(c_));
+    // quot_bits is derived from raster.varying_out_sig_bits (model/config/validate.hpp): a
+    // non-default width is recorded at its source so that the manifest reads back.
+    if (c_.quot_bits != RasterConfig{}.varying_out_sig_bits)
+      j["raster"] = {{"varying_out_sig_bits", c_.quot_bits}};
+    return j;
+  }
   void compute(VecRow& r) const override {
     const DivSig q = div_sig(c_, r[0], r[1]);
     r[2] = q.sig;
