@@ -1,7 +1,7 @@
 // `fxraster sweep recip|div`: error beside cost over the unit's configuration sweep.
 //
 // For every configuration of recip_sweep_configs() / div_sweep_configs(): the error against
-// exact arithmetic (recip_measure: exhaustive over all significands; div_measure: directed
+// exact arithmetic (analysis/measure.hpp: recip exhaustive over all significands; div directed
 // cases + random pairs), the cost model (latency, II, table bits, multipliers) and the model's
 // own speed; with --synth also LUT4s, logic depth and Fmax from Yosys / nextpnr-ice40
 // (scripts/synth_cost.py, cached by configuration id). Writes into --out:
@@ -21,6 +21,7 @@
 #include "model/config/validate.hpp"
 #include "model/arith/div.hpp"
 #include "model/stages/recip.hpp"
+#include "analysis/measure.hpp"
 #include "analysis/sweep_table.hpp"
 
 namespace fs = std::filesystem;
@@ -127,8 +128,9 @@ SweepTable sweep_recip(const Opts& o) {
     const auto& c = configs[i];
     fxr::validate(c, "recip sweep: " + fxr::recip_label(c));  // ranges and recip rules
     SweepRow r = make_row("recip", c, def, fxr::recip_label(c));
-    const fxr::RecipCost k = fxr::recip_cost(c);
-    const fxr::RecipErrorStats e = fxr::recip_measure(c);
+    const fxr::StageCost k = fxr::recip_cost(c);
+    const fxr::RecipBound bound = fxr::recip_bound(c);
+    const fxr::ErrorStats e = fxr::measure(c, fxr::MeasureOptions{});
     double ns = NAN;
     if (!o.no_timing) {
       const fxr::RecipUnit u(c);
@@ -137,7 +139,7 @@ SweepTable sweep_recip(const Opts& o) {
       ns = ns_per_call([&](uint64_t j) { return u.sig(lo | ((j * 0x9E3779B97F4A7C15ull) & span_mask)).sig; });
     }
     r.metrics = {(double)k.latency,  (double)k.ii,        (double)k.table_bits, (double)k.multipliers.size(),
-                 (double)k.mult_bits, (double)k.area_proxy, k.error_bound_ulp,   (double)k.valid,
+                 (double)k.mult_bits, (double)k.area_proxy(), bound.error_bound_ulp, (double)bound.valid,
                  e.max_err_ulp_before_round, e.max_err_ulp, e.mean_err_ulp, e.rms_err_ulp,
                  e.correctly_rounded_share, (double)e.faithful, (double)e.count, ns};
     r.texts = {multipliers_text(k.multipliers)};
@@ -174,8 +176,8 @@ SweepTable sweep_div(const Opts& o, uint64_t count) {
     const auto& c = configs[i];
     fxr::validate(c, "div sweep: " + fxr::div_label(c));  // ranges and div rules (model/config/validate.hpp)
     SweepRow r = make_row("div", c, def, fxr::div_label(c));
-    const fxr::DivCost k = fxr::div_cost(c);
-    const fxr::DivErrorStats e = fxr::div_measure(c, count, o.seed);
+    const fxr::StageCost k = fxr::div_cost(c);
+    const fxr::ErrorStats e = fxr::measure(c, fxr::MeasureOptions{false, count, o.seed});
     double ns = NAN;
     if (!o.no_timing) {
       const uint64_t nlo = uint64_t(1) << (c.num_bits - 1), dlo = uint64_t(1) << (c.den_bits - 1);
@@ -185,7 +187,7 @@ SweepTable sweep_div(const Opts& o, uint64_t count) {
       });
     }
     r.metrics = {(double)k.latency, (double)k.ii, (double)k.table_bits, (double)k.multipliers.size(),
-                 (double)k.mult_cells, (double)k.adder_bits_total, (double)k.ff_bits,
+                 (double)k.mult_bits, (double)k.adder_bits, (double)k.ff_bits,
                  e.max_err_ulp, e.mean_err_ulp, e.rms_err_ulp, e.correctly_rounded_share,
                  (double)e.correctly_rounded, (double)e.count, ns};
     r.texts = {multipliers_text(k.multipliers)};

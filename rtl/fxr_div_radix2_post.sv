@@ -2,7 +2,7 @@
 // fxr::div_sig_radix2_steps:
 //   signed digits to binary: Q = 2P + 1 - 2^QuotBits = {P[QuotBits-2:0], 1} (P's msb is digit 0,
 //   always 1, so no adder); a negative remainder is corrected (Q - 1 clears the odd lsb, r + b);
-//   then Q = floor(X), r in [0, b) exact, and fxr_div_round rounds to nearest even on the sign
+//   then Q = floor(X), r in [0, b) exact, and fxr_round rounds to nearest even on the sign
 //   of t = 2r - b. The corrected r is never formed: t = 2(r_i + b) - b = 2r_i + b when r_i < 0,
 //   else 2r_i - b, i.e. one more recurrence step (one carry chain, then the increment).
 // Special cases: dbz_i -> sig all ones, exp_adj 0, dbz_o = 1; else nz_i -> sig 0, exp_adj 0.
@@ -33,7 +33,7 @@ module fxr_div_radix2_post #(
   assign t     = neg ? (two_r + {3'b000, b_i}) : (two_r - {3'b000, b_i});
   assign q     = {p_i[QuotBits-2:0], ~neg};
 
-  fxr_div_round #(
+  fxr_round #(
     .QuotBits(QuotBits)
   ) u_round (
     .q_i      (q),

@@ -3,13 +3,13 @@
 // bit for bit; ports as fxr_div.
 //
 // Register stages (latency = 2 * NrSteps + 4 = fxr::div_cost):
-//   0            align (a, b exact), k = (a < b), a' = a << k, seed ROM -> y0 (NrFracBits frac)
-//   2i+1, 2i+2   Newton-Raphson step i: t = (b*y) >> (AlignBits-1)  [truncated];
-//                y <- (y * (2 - t)) >> NrFracBits                    [truncated]
+//   0            align (a, b exact), k = (a < b), a' = a << k, seed ROM (fxr_seed_rom) -> y0
+//   2i+1, 2i+2   Newton-Raphson step i (fxr_nr_step, the reciprocal core shared with fxr_recip):
+//                t = ~trunc_F(bn*y); y <- trunc_F(y*t), bn = b*2^-(AlignBits-1), y <= 1/bn
 //   2N+1         q~ = (a' * y) >> (AlignBits + NrFracBits - QuotBits) [truncated]
 //   2N+2         r = a'*2^(QuotBits-1) - q~*b (exact); one correction step either way; clamps
 //                (only inaccurate configurations reach them)
-//   output       RNE on the sign / zero of t = 2r - b (fxr_div_round)
+//   output       RNE on the sign / zero of t = 2r - b (fxr_round)
 // The whole pipeline stalls while out_valid_o && !out_ready_i.
 module fxr_div_recip_mul #(
   parameter int NumBits       = 32,
@@ -35,8 +35,7 @@ module fxr_div_recip_mul #(
   // Derived widths (see the model's comments for the bounds).
   localparam int W      = (NumBits > DenBits) ? NumBits : DenBits;  // div_align_bits
   localparam int F      = NrFracBits;
-  localparam int YBits  = F + 1;           // y <= 1 + 2^-F < 2
-  localparam int TBits  = F + 2;           // t = b*y < 2, e = 2 - t <= 2
+  localparam int YBits  = F;               // y < 1 (one-sided: y <= 1/bn <= 1, and y < 1 at F bits)
   localparam int QtBits = QuotBits + 2;    // q~ < a'*y*2^(qb-1)/2^(W-1) < 2^(qb+2)
   localparam int QShift = W + F - QuotBits;
   localparam int RBits  = W + QuotBits + 3;  // signed r = a'*2^(qb-1) - q~*b
@@ -56,7 +55,6 @@ module fxr_div_recip_mul #(
   logic [SeedIndexBits-1:0] idx;
   logic [SeedBits-1:0]      seed_frac;
   logic [SeedW-1:0]         seed;
-  logic [YBits-1:0]         y0;
 
   fxr_div_align #(
     .NumBits(NumBits),
@@ -76,30 +74,30 @@ module fxr_div_recip_mul #(
   end else begin : gen_idx_ext
     assign idx = {b[W-2:0], {(SeedIndexBits - (W - 1)){1'b0}}};
   end
-  fxr_div_seed_rom #(
+  fxr_seed_rom #(
     .SeedIndexBits(SeedIndexBits),
-    .SeedBits     (SeedBits)
+    .SeedFracBits (SeedBits)
   ) u_rom (
     .idx_i (idx),
     .seed_o(seed_frac)
   );
-  assign seed = {1'b1, seed_frac};
-  // y0 at F fraction bits (precision lost when the seed is wider than F + 1 bits: truncated).
-  if (F > SeedBits + 1) begin : gen_y0_widen
-    assign y0 = YBits'({seed, {(F - SeedBits - 1){1'b0}}});
-  end else if (F == SeedBits + 1) begin : gen_y0_same
-    assign y0 = YBits'(seed);
-  end else begin : gen_y0_trunc
-    assign y0 = YBits'(seed >> (SeedBits + 1 - F));
-  end
+  assign seed = {1'b1, seed_frac};  // y0 = seed * 2^-SeedW in [1/2, 1)
 
   // ---- pass-through registers (stage s at [s*Width +: Width]) -------------------------------
   logic [(StQ+1)*(W+1)-1:0] a1_q;  // used up to stage 2N (the q~ multiply)
   logic [NS*W-1:0]          b_q;   // used up to stage 2N+2
   logic [NS-1:0]            v_q, k_q, dbz_q, nz_q;
-  logic [YBits-1:0]             y0_q;
-  wire  [(NrSteps+1)*YBits-1:0] y_s;  // y after step i (registered at stage 2i)
-  assign y_s[0 +: YBits] = y0_q;
+  logic [SeedW-1:0]             y0_q;
+  wire  [(NrSteps+1)*YBits-1:0] y_s;  // y after step i >= 1 (registered at stage 2i); slot 0:
+                                      // y0 at F fraction bits, read only when NrSteps == 0
+  // y0 at F fraction bits (precision lost when the seed is wider than F bits: truncated).
+  if (F > SeedW) begin : gen_y0_widen
+    assign y_s[0 +: YBits] = YBits'({y0_q, {(F - SeedW){1'b0}}});
+  end else if (F == SeedW) begin : gen_y0_same
+    assign y_s[0 +: YBits] = y0_q;
+  end else begin : gen_y0_trunc
+    assign y_s[0 +: YBits] = YBits'(y0_q >> (SeedW - F));
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -115,33 +113,42 @@ module fxr_div_recip_mul #(
       nz_q  <= {nz_q[NS-2:0], in_num_i == '0};
       b_q   <= {b_q[(NS-1)*W-1:0], b};
       a1_q  <= {a1_q[StQ*(W+1)-1:0], a1};
-      y0_q  <= y0;
+      y0_q  <= seed;
     end
   end
 
-  // ---- Newton-Raphson steps ------------------------------------------------------------------
+  if (NrSteps > 0) begin : gen_y0_unused
+    logic unused_y0;  // the steps read y0_q directly
+    assign unused_y0 = ^y_s[0 +: YBits];
+  end
+
+  // ---- Newton-Raphson steps (the reciprocal core) ----------------------------------------------
   for (genvar i = 0; i < NrSteps; i++) begin : gen_nr
-    localparam int SA = 2 * i;      // stage holding y_i
-    localparam int YI = i * YBits;
-    localparam int YO = (i + 1) * YBits;
-    localparam int BI = SA * W;
-    logic [W+YBits-1:0] by;     // b*y, exact
-    logic [TBits-1:0]   t_q;    // t = (b*y) >> (W-1): precision lost, W-1 low bits
-    logic [YBits-1:0]   ym_q;   // y_i beside t
-    logic [TBits-1:0]   e;      // 2 - t, exact
-    logic [YBits+TBits-1:0] ye; // y*e, exact
-    logic [YBits-1:0]   y_next_q;
-    assign y_s[YO +: YBits] = y_next_q;
-    assign by = {{YBits{1'b0}}, b_q[BI +: W]} * {{W{1'b0}}, y_s[YI +: YBits]};
-    assign e  = (TBits'(1) << (F + 1)) - t_q;
-    assign ye = {{TBits{1'b0}}, ym_q} * {{YBits{1'b0}}, e};
-    always_ff @(posedge clk_i) begin
-      if (out_free) begin
-        t_q  <= TBits'(by >> (W - 1));
-        ym_q <= y_s[YI +: YBits];
-        // y <- (y*e) >> F: precision lost, F low bits (truncation).
-        y_next_q <= YBits'(ye >> F);
-      end
+    localparam int SA = 2 * i;  // stage holding y_i
+    if (i == 0) begin : gen_first  // from the seed, SeedW fraction bits
+      fxr_nr_step #(
+        .XBits    (W),
+        .YFracBits(SeedW),
+        .FracBits (F)
+      ) u_step (
+        .clk_i(clk_i),
+        .en_i (out_free),
+        .x_i  (b_q[SA*W +: W]),
+        .y_i  (y0_q),
+        .y_o  (y_s[YBits +: YBits])
+      );
+    end else begin : gen_next
+      fxr_nr_step #(
+        .XBits    (W),
+        .YFracBits(F),
+        .FracBits (F)
+      ) u_step (
+        .clk_i(clk_i),
+        .en_i (out_free),
+        .x_i  (b_q[SA*W +: W]),
+        .y_i  (y_s[i*YBits +: YBits]),
+        .y_o  (y_s[(i+1)*YBits +: YBits])
+      );
     end
   end
 
@@ -211,7 +218,7 @@ module fxr_div_recip_mul #(
   logic [1:0]          exp_rnd;
   assign bo = b_q[StC*W +: W];
   assign t  = {1'b0, rc_q, 1'b0} - {2'b00, bo};
-  fxr_div_round #(
+  fxr_round #(
     .QuotBits(QuotBits)
   ) u_round (
     .q_i      (qc_q),

@@ -5,10 +5,11 @@
 //   w = (-1)^in_neg_i * in_sig_i * 2^(in_exp_i - (InSigBits-1)), in_sig_i in [2^(InSigBits-1), 2^InSigBits)
 //   (msb set) or all-zero (w = 0; in_exp_i is then ignored).
 //   1/w = (-1)^out_neg_o * out_sig_o * 2^(out_exp_o - (OutSigBits-1)), out_sig_o msb set.
-//   Significand: minimax seed table (2^SeedIndexBits entries of SeedFracBits bits), NrSteps
-//   Newton-Raphson steps y <- trunc(y * ~trunc(x*y)) on NrFracBits fraction bits, round to
-//   nearest at OutSigBits, and with Correction = 1 the back-multiply midpoint test that makes
-//   the result correctly rounded (RNE; ties cannot occur).
+//   Significand: the reciprocal core shared with fxr_div_recip_mul (fxr_seed_rom: minimax seed
+//   table of 2^SeedIndexBits entries of SeedFracBits bits; NrSteps fxr_nr_step stages
+//   y <- trunc(y * ~trunc(x*y)) on NrFracBits fraction bits), K = y rounded half up at OutSigBits,
+//   and with Correction = 1 the back-multiply midpoint test that makes the result correctly
+//   rounded (RNE; ties cannot occur); fxr_round increments and renormalises.
 //   Special cases: sign passes through. w = 0: out_dbz_o = 1, out_sig_o = all ones,
 //   out_exp_o = 2^(ExpBits-1) - 1. 1/|w| = 2^(2^(ExpBits-1)) (only w = +-2^(-2^(ExpBits-1))):
 //   out_ovf_o = 1, same saturated value. No other overflow or underflow is possible.
@@ -31,8 +32,9 @@
 //   7 at the default configuration. Initiation interval 1. out_ready_i low stalls every stage
 //   (in_ready_o = out_ready_i | ~out_valid_o); no result is lost or duplicated.
 //
-// The seed table is computed at elaboration by seed_entry(), the same minimax rule and integer
-// arithmetic as fxr::recip_seed_table (model/stages/recip.cpp); a Verilator check compares the two.
+// The seed table is computed at elaboration by fxr_seed_rom, the same minimax rule and integer
+// arithmetic as fxr::recip_core_seed_table (model/arith/recip_core.cpp); tb/seed_rom_test.cpp
+// compares the two for the default and the variant configurations.
 module fxr_recip #(
   parameter int InSigBits     = fxr_config_pkg::RecipInSigBits,
   parameter int OutSigBits    = fxr_config_pkg::RecipOutSigBits,
@@ -59,51 +61,13 @@ module fxr_recip #(
   output logic                  out_ovf_o
 );
   // ---- derived widths and stage numbers ---------------------------------------------------
-  localparam int F = NrFracBits;            // fraction bits of y, p, t after the seed
+  localparam int F = NrFracBits;            // fraction bits of y after the first NR step
   localparam int Y0W = SeedFracBits + 1;    // y0 with its leading one: y0 = Y0 * 2^-(Y0W)
-  localparam int YW = (Y0W > F) ? Y0W : F;  // width of the y registers (y < 1 throughout)
   localparam int Drop = F - OutSigBits;     // bits below the output lsb at the rounding (>= 1)
-  localparam int KW = OutSigBits + 1;       // rounded K in units of 2^-OutSigBits: up to 2^OutSigBits
-  localparam int Entries = 2 ** SeedIndexBits;
+  localparam int KW = OutSigBits + 1;       // K rounded half up, units of 2^-OutSigBits: up to 2^OutSigBits
   localparam int StRound = 1 + 2 * NrSteps; // stage index of the rounding register
   localparam int Latency = StRound + 1 + Correction;
   localparam int Last = Latency - 1;        // the output register stage
-
-  // ---- seed table (elaboration-time constants) --------------------------------------------
-  // Largest relative endpoint error of candidate y (units 2^-(SeedIndexBits+SeedFracBits+1)) on
-  // the segment [a, b) * 2^-SeedIndexBits.
-  // (64-bit signed arithmetic: products below 2^(2*SeedIndexBits+SeedFracBits+3), at most 2^51.)
-  function automatic logic signed [63:0] seed_cost(input logic signed [63:0] a,
-                                                   input logic signed [63:0] y);
-    logic signed [63:0] d, ea, eb;
-    d  = 64'sd1 <<< (SeedIndexBits + SeedFracBits + 1);
-    ea = d - a * y;
-    eb = d - (a + 64'sd1) * y;
-    if (ea < 0) ea = -ea;
-    if (eb < 0) eb = -eb;
-    seed_cost = (ea > eb) ? ea : eb;
-  endfunction
-
-  // Entry i: the grid value (k bits after the leading one) minimising the largest |1 - x*y0| over
-  // x in [1 + i*2^-s, 1 + (i+1)*2^-s); candidates floor / floor+1 of 2^(s+k+2) / (2a+1), clamped
-  // to [1/2, 1); ties keep the smaller.
-  function automatic logic [SeedFracBits-1:0] seed_entry(input int i);
-    logic signed [63:0] a, y_lo, y_hi, y_floor, best, up;
-    a       = (64'sd1 <<< SeedIndexBits) + 64'(i);
-    y_lo    = 64'sd1 <<< SeedFracBits;
-    y_hi    = (64'sd1 <<< (SeedFracBits + 1)) - 64'sd1;
-    y_floor = (64'sd1 <<< (SeedIndexBits + SeedFracBits + 2)) / (64'sd2 * a + 64'sd1);
-    best    = (y_floor < y_lo) ? y_lo : ((y_floor > y_hi) ? y_hi : y_floor);
-    up      = (y_floor + 64'sd1 < y_lo) ? y_lo :
-              ((y_floor + 64'sd1 > y_hi) ? y_hi : y_floor + 64'sd1);
-    if (seed_cost(a, up) < seed_cost(a, best)) best = up;
-    seed_entry = SeedFracBits'(best - y_lo);
-  endfunction
-
-  logic [Entries*SeedFracBits-1:0] seed_rom;
-  for (genvar i = 0; i < Entries; i++) begin : gen_seed
-    assign seed_rom[i*SeedFracBits +: SeedFracBits] = seed_entry(i);
-  end
 
   // ---- handshake: one global enable, the pipeline holds while the output is stalled --------
   logic [Latency-1:0] valid_q;
@@ -122,27 +86,30 @@ module fxr_recip #(
 
   // ---- per-stage data ---------------------------------------------------------------------
   // Stages 0 .. Last-1 (the output stage Last has its own registers below). Flat vectors, one
-  // field per stage: X[s*W +: W] is stage s (Yosys 0.23 has no packed 2-D arrays).
+  // field per stage: X[s*W +: W] is stage s (Yosys 0.23 has no packed 2-D arrays). y lives in
+  // the fxr_nr_step instances; K (rounded) in k_q at the rounding stage.
   logic [Last*InSigBits-1:0] m_d, m_q;      // significand of w
   logic [Last-1:0]           neg_d, neg_q;
   logic [Last-1:0]           zero_d, zero_q;
   logic [Last*ExpBits-1:0]   exp_d, exp_q;
-  logic [Last*YW-1:0]        y_d, y_q;      // y (fraction bits: Y0W at stage 0, F after)
-  logic [Last*(F+1)-1:0]     t_d, t_q;      // t = ~p at the first stage of each NR step
-  logic [Last*KW-1:0]        k_d, k_q;      // rounded result in units of 2^-OutSigBits
 
   // Stage 0: seed lookup. Index = the SeedIndexBits fraction bits below the leading one.
   logic [SeedIndexBits-1:0] seed_idx;
+  logic [SeedFracBits-1:0]  seed_frac;
   assign seed_idx = in_sig_i[InSigBits-2 -: SeedIndexBits];
+  fxr_seed_rom #(
+    .SeedIndexBits(SeedIndexBits),
+    .SeedFracBits (SeedFracBits)
+  ) u_rom (
+    .idx_i (seed_idx),
+    .seed_o(seed_frac)
+  );
   assign m_d[0 +: InSigBits] = in_sig_i;
   assign neg_d[0]            = in_neg_i;
   assign zero_d[0]           = (in_sig_i == '0);
   assign exp_d[0 +: ExpBits] = in_exp_i;
-  assign y_d[0 +: YW]        = YW'({1'b1, seed_rom[seed_idx*SeedFracBits +: SeedFracBits]});
-  assign t_d[0 +: F+1]       = '0;
-  assign k_d[0 +: KW]        = '0;
 
-  // Stages 1 .. Last: the word moves on; each stage overrides what it computes.
+  // Stages 1 .. Last: the word moves on.
   for (genvar s = 1; s < Last; s++) begin : gen_pass
     assign m_d[(s)*InSigBits +: InSigBits]    = m_q[(s-1)*InSigBits +: InSigBits];
     assign neg_d[s]  = neg_q[s-1];
@@ -150,73 +117,99 @@ module fxr_recip #(
     assign exp_d[(s)*ExpBits +: ExpBits]  = exp_q[(s-1)*ExpBits +: ExpBits];
   end
 
-  // Newton-Raphson step j: stage 1+2j computes t = ~trunc_F(x*y), stage 2+2j y = trunc_F(y*t).
+  // Newton-Raphson step j (fxr_nr_step): reads y and m of stage 2j, y' is registered at stage 2j+2.
+  logic [Y0W-1:0]           y0_q;     // stage 0: the seed with its leading one
+  wire  [NrSteps*F-1:0]     y_s;      // y after step j at [j*F +: F]
   for (genvar j = 0; j < NrSteps; j++) begin : gen_step
-    localparam int SA = 1 + 2 * j;
-    localparam int SB = 2 + 2 * j;
-    localparam int FY = (j == 0) ? Y0W : F;     // fraction bits (= width) of the incoming y
-    localparam int Sh = InSigBits - 1 + FY - F; // x*y has InSigBits-1+FY fraction bits; keep F
-
-    logic [FY-1:0]           y_in;
-    logic [InSigBits+FY-1:0] xy;
-    logic [F:0]              p;
-    assign y_in = y_q[(SA-1)*YW +: FY];
-    assign xy   = (InSigBits+FY)'(m_q[(SA-1)*InSigBits +: InSigBits]) * (InSigBits+FY)'(y_in);
-    // p = x*y < 2: F+1 bits. Precision lost: truncation, < 2^-F.
-    if (Sh >= 0) begin : gen_trunc
-      assign p = xy[Sh +: F+1];
-      logic unused_xy;  // the truncated low bits
-      assign unused_xy = ^xy;
-    end else begin : gen_widen
-      assign p = (F+1)'(xy) << (-Sh);
+    if (j == 0) begin : gen_first
+      fxr_nr_step #(
+        .XBits    (InSigBits),
+        .YFracBits(Y0W),
+        .FracBits (F)
+      ) u_step (
+        .clk_i(clk_i),
+        .en_i (advance),
+        .x_i  (m_q[0 +: InSigBits]),
+        .y_i  (y0_q),
+        .y_o  (y_s[0 +: F])
+      );
+    end else begin : gen_next
+      fxr_nr_step #(
+        .XBits    (InSigBits),
+        .YFracBits(F),
+        .FracBits (F)
+      ) u_step (
+        .clk_i(clk_i),
+        .en_i (advance),
+        .x_i  (m_q[(2*j)*InSigBits +: InSigBits]),
+        .y_i  (y_s[(j-1)*F +: F]),
+        .y_o  (y_s[j*F +: F])
+      );
     end
-    // t = 2 - 2^-F - p (ones' complement): never above 2 - x*y, so y stays <= 1/x.
-    assign t_d[(SA)*(F+1) +: (F+1)] = ~p;
-    assign y_d[(SA)*YW +: YW] = y_q[(SA-1)*YW +: YW];
-    assign k_d[(SA)*KW +: KW] = '0;
-
-    logic [FY-1:0]     y_b;
-    logic [FY+F:0]     yt;
-    assign y_b = y_q[(SB-1)*YW +: FY];
-    assign yt  = (FY+F+1)'(y_b) * (FY+F+1)'(t_q[(SB-1)*(F+1) +: (F+1)]);
-    // y*t has FY+F fraction bits; keep F (the value is below 1). Precision lost: truncation.
-    assign y_d[(SB)*YW +: YW] = YW'(yt[FY +: F]);
-    logic unused_yt;  // truncated low bits; the top bit is zero (y*t < 1)
-    assign unused_yt = ^yt;
-    assign t_d[(SB)*(F+1) +: (F+1)] = '0;
-    assign k_d[(SB)*KW +: KW] = '0;
   end
 
   // Rounding stage: K = round_half_up(y * 2^OutSigBits), at least 2^(OutSigBits-1) (1/x > 1/2).
-  logic [F-1:0] y_fin;
-  logic [F:0]   y_rnd;
+  logic [F-1:0]  y_fin;
+  logic [F:0]    y_rnd;
   logic [KW-1:0] k_rnd;
-  assign y_fin = y_q[(StRound-1)*YW +: F];
+  assign y_fin = y_s[(NrSteps-1)*F +: F];
   assign y_rnd = {1'b0, y_fin} + ((F+1)'(1) << (Drop - 1));  // precision lost: rounding
   assign k_rnd = y_rnd[F:Drop];
   logic unused_rnd;  // the bits below the output lsb, dropped by the rounding
   assign unused_rnd = ^y_rnd;
-  logic [KW-1:0] k_round;
-  assign k_round = (k_rnd < (KW'(1) << (OutSigBits - 1))) ? (KW'(1) << (OutSigBits - 1)) : k_rnd;
 
-  // Final K (after the midpoint test when Correction = 1), then normalisation and specials.
-  logic [KW-1:0] k_fin;
+  // Final rounding (fxr_round: increment, renormalise 1.0 into the next binade).
+  logic [OutSigBits-1:0] q_fin;
+  logic                  t_neg_fin;
+  logic [OutSigBits-1:0] sig_fin;
+  logic [1:0]            exp_adj_fin;  // 2'b11: below 1 (exp_adj -1); 2'b00: exactly 1.0
+  localparam logic [OutSigBits-1:0] KLo = {1'b1, {(OutSigBits-1){1'b0}}};
   if (Correction != 0) begin : gen_correct
-    assign k_d[StRound*KW +: KW]     = k_round;  // the rounding stage is registered
-    assign y_d[StRound*YW +: YW]     = '0;
-    assign t_d[StRound*(F+1) +: F+1] = '0;
+    // K clamped to [2^(o-1), 2^o - 1] and registered (K = 2^o means RN(1/x) = 1.0, which the
+    // midpoint test below restores: docs/arith.md).
+    logic [OutSigBits-1:0] k_clamp;
+    logic [OutSigBits-1:0] k_q;
+    assign k_clamp = (k_rnd < KW'(KLo)) ? KLo : (k_rnd[OutSigBits] ? '1 : k_rnd[OutSigBits-1:0]);
+    always_ff @(posedge clk_i) begin
+      if (advance) begin
+        k_q <= k_clamp;
+      end
+    end
     // 1/x > (K + 1/2) * 2^-OutSigBits  <=>  m * (2K + 1) < 2^(InSigBits + OutSigBits): exact.
-    logic [KW:0]             k_odd;
-    logic [InSigBits+KW:0]   mk;
-    logic                    above;
-    assign k_odd = {k_q[(Last-1)*KW +: KW], 1'b1};
-    assign mk    = (InSigBits+KW+1)'(m_q[(Last-1)*InSigBits +: InSigBits]) * (InSigBits+KW+1)'(k_odd);
-    assign above = (mk[InSigBits+KW:InSigBits+OutSigBits] == '0);
+    logic [KW-1:0]           k_odd;
+    logic [InSigBits+KW-1:0] mk;
+    assign k_odd = {k_q, 1'b1};
+    assign mk    = (InSigBits+KW)'(m_q[(Last-1)*InSigBits +: InSigBits]) * (InSigBits+KW)'(k_odd);
     logic unused_mk;  // only the bits at and above 2^(InSigBits+OutSigBits) decide
     assign unused_mk = ^mk;
-    assign k_fin = k_q[(Last-1)*KW +: KW] + KW'(above);
+    assign q_fin     = k_q;
+    assign t_neg_fin = (mk[InSigBits+KW-1:InSigBits+OutSigBits] != '0);  // at or below the midpoint
   end else begin : gen_no_correct
-    assign k_fin = k_round;  // the rounding stage is the output stage
+    // The rounding stage is the output stage: q = floor(y * 2^o), up by the rounding bit (half
+    // up); a q below 1/2 is clamped to 1/2 without rounding up (the model's max(K, 2^(o-1))).
+    logic q_low;
+    assign q_low     = ~y_fin[F-1];
+    assign q_fin     = q_low ? KLo : y_fin[F-1:Drop];
+    assign t_neg_fin = q_low | ~y_fin[Drop-1];
+    logic unused_k;
+    assign unused_k = ^k_rnd;
+  end
+  fxr_round #(
+    .QuotBits(OutSigBits)
+  ) u_round (
+    .q_i      (q_fin),
+    .t_neg_i  (t_neg_fin),
+    .t_zero_i (1'b0),
+    .k_i      (1'b1),
+    .sig_o    (sig_fin),
+    .exp_adj_o(exp_adj_fin)
+  );
+
+  // Stage 0 registers of y0 (the NR steps hold the rest of y).
+  always_ff @(posedge clk_i) begin
+    if (advance) begin
+      y0_q <= {1'b1, seed_frac};
+    end
   end
 
   // Output register stage: normalise (1.0 -> next binade), exponent, division by zero, overflow.
@@ -229,8 +222,8 @@ module fxr_recip #(
   localparam logic [ExpBits-1:0] ExpMax = {1'b0, {(ExpBits-1){1'b1}}};
   assign zero_in  = zero_q[Last-1];
   assign exp_in   = exp_q[(Last-1)*ExpBits +: ExpBits];
-  assign one      = k_fin[OutSigBits];
-  assign sig_norm = one ? {1'b1, {(OutSigBits-1){1'b0}}} : k_fin[OutSigBits-1:0];
+  assign one      = (exp_adj_fin == 2'b00);
+  assign sig_norm = sig_fin;
   assign lead     = -$signed({exp_in[ExpBits-1], exp_in}) - (one ? '0 : (ExpBits+1)'(1));
   assign ovf      = !zero_in && (lead > $signed({1'b0, ExpMax}));
 
@@ -244,9 +237,6 @@ module fxr_recip #(
         neg_q[s]  <= neg_d[s];
         zero_q[s] <= zero_d[s];
         exp_q[(s)*ExpBits +: ExpBits]  <= exp_d[(s)*ExpBits +: ExpBits];
-        y_q[(s)*YW +: YW]    <= y_d[(s)*YW +: YW];
-        t_q[(s)*(F+1) +: (F+1)]    <= t_d[(s)*(F+1) +: (F+1)];
-        k_q[(s)*KW +: KW]    <= k_d[(s)*KW +: KW];
       end
       out_neg_q <= neg_q[Last-1];
       out_dbz_q <= zero_in;
@@ -262,9 +252,9 @@ module fxr_recip #(
   assign out_sig_o = out_sig_q;
   assign out_exp_o = out_exp_q;
 
-  // Fields a stage does not carry (t outside the first half of an NR step, y's padding above the
-  // seed width, m and k after their last reader) are constant or dead; synthesis removes them.
+  // Fields after their last reader (m beyond the NR steps and the midpoint test) are dead;
+  // synthesis removes them.
   logic unused_fields;
-  assign unused_fields = ^{m_q, y_q, t_q, k_q};
+  assign unused_fields = ^{m_q, exp_adj_fin};
 
 endmodule

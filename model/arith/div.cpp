@@ -2,10 +2,12 @@
 #include "model/arith/div.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <random>
+#include <memory>
 #include <stdexcept>
 #include <string>
+
+#include "model/arith/recip_core.hpp"
+#include "model/arith/round.hpp"
 
 namespace fxr {
 
@@ -58,20 +60,10 @@ inline bool special(const DivConfig& c, uint64_t n, uint64_t d, DivSig* out) {
 }
 
 // Round to nearest even from a truncated quotient q = floor(X) and its exact remainder
-// r ∈ [0, b): up when 2r > b, or 2r == b and q is odd. This is the unit's only rounding.
-// A carry out of qb bits renormalises (sig = 2^(qb−1), exp_adj + 1).
-// Ties-to-even increment of a floor quotient q with remainder r ∈ [0, den): 2r > den, or a
-// tie with q odd. Shared by the quotient rounding and the seed-table generator.
-inline bool rne_up(u128 q, u128 r, u128 den) {
-  const u128 two_r = r << 1;
-  return two_r > den || (two_r == den && (q & 1));
-}
-
+// r ∈ [0, b) (model/arith/round.hpp): the unit's only rounding. A carry out of qb bits
+// renormalises (sig = 2^(qb−1), exp_adj + 1).
 inline DivSig round_rne(const DivConfig& c, u128 q, u128 r, uint64_t b, int k) {
-  if (rne_up(q, r, b)) ++q;
-  DivSig s{(uint64_t)q, -k};
-  if (q == pow2(c.quot_bits)) s = {(uint64_t)pow2(c.quot_bits - 1), 1 - k};
-  return s;
+  return round_increment((uint64_t)q, rne_round_up<u128>(q, r, b), c.quot_bits, -k);
 }
 
 }  // namespace
@@ -128,35 +120,29 @@ DivSig div_sig_radix2_steps(const DivConfig& c, uint64_t n, uint64_t d) {
 
 // ---- reciprocal, multiply, remainder correction ---------------------------------------------
 
+RecipCoreShape div_recip_core_shape(const DivConfig& c) {
+  RecipCoreShape s;
+  s.x_bits = div_align_bits(c);
+  s.seed_index_bits = c.seed_index_bits;
+  s.seed_frac_bits = c.seed_bits;
+  s.nr_steps = c.nr_steps;
+  s.nr_frac_bits = c.nr_frac_bits;
+  return s;
+}
+
 std::vector<uint32_t> div_seed_table(const DivConfig& c) {
-  const int si = c.seed_index_bits, sb = c.seed_bits;
-  std::vector<uint32_t> t(size_t(1) << si);
-  for (uint64_t i = 0; i < t.size(); ++i) {
-    // 1 / (1 + (i + ½)·2^−si) = 2^(si+1) / (2^(si+1) + 2i + 1); scaled by 2^(sb+1), RNE.
-    const u128 num = pow2(sb + 1 + si + 1);
-    const u128 den = pow2(si + 1) + 2 * i + 1;
-    u128 q = num / den;
-    const u128 r = num % den;
-    if (rne_up(q, r, den)) ++q;
-    u128 e = q - pow2(sb);                          // drop the implicit leading one
-    if (e >= pow2(sb)) e = pow2(sb) - 1;            // i = 0 may round up to exactly 1.0: clamp
-    t[i] = (uint32_t)e;
-  }
-  return t;
+  const std::vector<uint64_t> t = recip_core_seed_table(c.seed_index_bits, c.seed_bits);
+  return std::vector<uint32_t>(t.begin(), t.end());  // seed_bits ≤ 20 (parameter range)
 }
 
 namespace {
 
-// Seed table cache keyed by (seed_index_bits, seed_bits): built once per shape, read-only then.
-const std::vector<uint32_t>& seed_table_cached(const DivConfig& c) {
-  thread_local int cached_si = -1, cached_sb = -1;
-  thread_local std::vector<uint32_t> table;
-  if (cached_si != c.seed_index_bits || cached_sb != c.seed_bits) {
-    table = div_seed_table(c);
-    cached_si = c.seed_index_bits;
-    cached_sb = c.seed_bits;
-  }
-  return table;
+// The reciprocal core of the last shape per thread: built once per shape, read-only then.
+const RecipCore& core_cached(const DivConfig& c) {
+  thread_local std::unique_ptr<RecipCore> core;
+  const RecipCoreShape s = div_recip_core_shape(c);
+  if (!core || core->shape() != s) core = std::make_unique<RecipCore>(s);
+  return *core;
 }
 
 }  // namespace
@@ -166,22 +152,9 @@ DivSig div_sig_recip_mul(const DivConfig& c, uint64_t n, uint64_t d) {
   if (special(c, n, d, &s)) return s;
   const Aligned x = align(c, n, d);
   const int w = div_align_bits(c), qb = c.quot_bits, f = c.nr_frac_bits;
-  const int si = c.seed_index_bits, sb = c.seed_bits;
-  // Seed index: the si divisor bits after its leading one (zero-extended if W − 1 < si).
-  const int frac_b = w - 1;  // b = bn·2^(W−1), bn ∈ [1, 2)
-  const uint64_t idx = frac_b >= si ? (x.b >> (frac_b - si)) & (uint64_t)(pow2(si) - 1)
-                                    : (x.b << (si - frac_b)) & (uint64_t)(pow2(si) - 1);
-  const u128 seed = pow2(sb) + seed_table_cached(c)[idx];  // y0 = seed·2^−(sb+1) ∈ (½, 1]
-  // Iterate Y = y·2^f. Precision lost: a seed wider than f + 1 bits is truncated here.
-  u128 y = f >= sb + 1 ? seed << (f - sb - 1) : seed >> (sb + 1 - f);
-  for (int i = 0; i < c.nr_steps; ++i) {
-    // t = bn·y, truncated to f fraction bits (precision lost: the W − 1 low product bits).
-    const u128 t = ((u128)x.b * y) >> frac_b;
-    // e = 2 − t ≥ 0 because y ≤ 1 + 2^−f and bn < 2 keep t < 2 (f fraction bits, exact).
-    const u128 e = pow2(f + 1) - t;
-    // y ← y·e, truncated to f fraction bits (precision lost: f low product bits).
-    y = (y * e) >> f;
-  }
+  // y ≈ 1/bn at f fraction bits, bn = b·2^−(W−1) ∈ [1, 2): the reciprocal core (seed table,
+  // one-sided Newton–Raphson; precision lost at its truncations), 0 ≤ 1/bn − y.
+  const u128 y = core_cached(c).approx(x.b);
   // Truncated quotient q̃ ≈ X = a'·y·2^(qb−1) / 2^(W−1+f) (precision lost: the low product bits).
   const int qshift = w + f - qb;
   const u128 prod = x.a1 * y;
@@ -248,8 +221,8 @@ DivResult divide(const DivConfig& c, const FxFloat& num, const FxFloat& den) {
 
 // ---- cost ------------------------------------------------------------------------------------
 
-DivCost div_cost(const DivConfig& c) {
-  DivCost k;
+StageCost div_cost(const DivConfig& c) {
+  StageCost k;
   const int w = div_align_bits(c), qb = c.quot_bits, rb = div_rem_bits(c);
   if (c.algorithm == DivAlgorithm::Radix2) {
     const int steps = div_radix2_steps(c);
@@ -262,7 +235,7 @@ DivCost div_cost(const DivConfig& c) {
     // the post stage consumes the previous one.
     k.ii = iter ? stages + 1 : 1;
     const int step_adders = iter ? c.bits_per_stage : steps;
-    k.adder_bits_total = rb                      // pre: a − b (its sign is k)
+    k.adder_bits = rb                      // pre: a − b (its sign is k)
                          + rb                    // pre: 2a − b, in parallel
                          + step_adders * rb      // recurrence add/sub
                          + (rb + 1)              // post: t = 2r ∓ b, the RNE decision
@@ -281,157 +254,27 @@ DivCost div_cost(const DivConfig& c) {
     }
   } else {
     const int f = c.nr_frac_bits;
-    // pre (align, compare, seed ROM) → 2 per NR step (b·y, y·e) → quotient multiply →
+    // pre (align, compare, seed ROM) → 2 per NR step (b·y → t, y·t → y) → quotient multiply →
     // back-multiply and correction → RNE, renormalise into the output.
     k.latency = 1 + 2 * c.nr_steps + 1 + 1 + 1;
     k.ii = 1;
     k.table_bits = (int64_t(1) << c.seed_index_bits) * c.seed_bits;
-    for (int i = 0; i < c.nr_steps; ++i) {
-      k.multipliers.push_back({w, f + 2});
-      k.multipliers.push_back({f + 2, f + 2});
-    }
-    k.multipliers.push_back({w + 1, f + 2});  // q̃ = a'·y
+    // The reciprocal core's multipliers (per NR step b·y and y·t: no adder, t is a ones'
+    // complement), then the quotient and the back-multiply.
+    k.multipliers = recip_core_multipliers(div_recip_core_shape(c));
+    k.multipliers.push_back({w + 1, f});      // q̃ = a'·y (y < 1: f bits)
     k.multipliers.push_back({qb + 1, w});     // q̃·b
-    k.adder_bits_total = (w + 1)                       // compare a < b
-                         + c.nr_steps * (f + 2)        // e = 2 − t
-                         + (w + qb + 1)                // r = a'·2^(qb−1) − q̃·b
-                         + 2 * rb                      // r + b, r − b
-                         + 2 * (qb + 1)                // q̃ ± 1
-                         + rb                          // 2r − b
-                         + (qb + 1);                   // increment
-    const int stage_ff = (w + 1) + w + (f + 2) + 2;   // a', b, y, flags
+    k.adder_bits = (w + 1)                       // compare a < b
+                   + (w + qb + 1)                // r = a'·2^(qb−1) − q̃·b
+                   + 2 * rb                      // r + b, r − b
+                   + 2 * (qb + 1)                // q̃ ± 1
+                   + rb                          // 2r − b
+                   + (qb + 1);                   // increment
+    const int stage_ff = (w + 1) + w + f + 2;   // a', b, y, flags
     k.ff_bits = (k.latency - 1) * stage_ff + (qb + 2 + 1 + 1);
   }
-  for (const auto& m : k.multipliers) k.mult_cells += (int64_t)m.first * m.second;
+  for (const auto& m : k.multipliers) k.mult_bits += (int64_t)m.first * m.second;
   return k;
-}
-
-// ---- error measurement -----------------------------------------------------------------------
-
-namespace {
-
-struct Accum {
-  double max = 0, sum = 0, sum2 = 0;
-  uint64_t count = 0, correct = 0;
-};
-
-// Exact error of s against a / b (aligned operands) in ulps of the exact quotient's binade:
-//   |sig·2^exp_adj·2^−(qb−1) − a/b| / 2^(−k−(qb−1)) = |sig·2^(exp_adj+k)·b − a·2^(qb−1+k)| / b.
-double err_ulp(const DivConfig& c, const DivSig& s, uint64_t n, uint64_t d) {
-  const Aligned x = align(c, n, d);
-  const int sh = s.exp_adj + x.k;  // ∈ {0, 1} by the div_sig contract
-  const u128 got = ((u128)s.sig * x.b) << (sh < 0 ? 0 : sh);
-  const u128 want = (u128)x.a << (c.quot_bits - 1 + x.k);
-  const u128 diff = got > want ? got - want : want - got;
-  return (double)diff / (double)x.b;  // double only for the statistic
-}
-
-void account(const DivConfig& c, uint64_t n, uint64_t d, Accum& acc) {
-  const DivSig got = div_sig(c, n, d);
-  const double e = err_ulp(c, got, n, d);
-  acc.max = std::max(acc.max, e);
-  acc.sum += e;
-  acc.sum2 += e * e;
-  acc.count++;
-  acc.correct += got == div_sig_exact(c, n, d);
-}
-
-}  // namespace
-
-DivErrorStats div_measure(const DivConfig& c, uint64_t count, uint64_t seed) {
-  Accum acc;
-  const int nb = c.num_bits, db = c.den_bits, qb = c.quot_bits, w = div_align_bits(c);
-  const uint64_t nlo = (uint64_t)pow2(nb - 1), nhi = (uint64_t)pow2(nb) - 1;
-  const uint64_t dlo = (uint64_t)pow2(db - 1), dhi = (uint64_t)pow2(db) - 1;
-  std::mt19937_64 rng(seed);
-  auto rand_in = [&](uint64_t lo, uint64_t hi) { return lo + rng() % (hi - lo + 1); };
-  // Directed: range ends.
-  for (uint64_t n : {nlo, nlo + 1, nhi - 1, nhi})
-    for (uint64_t d : {dlo, dlo + 1, dhi - 1, dhi}) account(c, n, d, acc);
-  // Directed: n equal (after alignment) to d and its neighbours; divisors on seed-interval edges.
-  for (int i = 0; i < 256; ++i) {
-    const uint64_t d = rand_in(dlo, dhi);
-    const uint64_t a = (nb >= db) ? d << (nb - db) : d >> (db - nb);
-    for (int64_t delta : {-1, 0, 1}) {
-      const uint64_t n = a + delta;
-      if (n >= nlo && n <= nhi) account(c, n, d, acc);
-    }
-    const int si = c.seed_index_bits < db - 1 ? c.seed_index_bits : db - 1;
-    const uint64_t edge = dlo + (rand_in(0, (uint64_t)pow2(si) - 1) << (db - 1 - si));
-    for (int64_t delta : {-1, 0, 1}) {
-      const uint64_t dd = edge + delta;
-      if (dd >= dlo && dd <= dhi) account(c, rand_in(nlo, nhi), dd, acc);
-    }
-  }
-  // Directed: exact rounding ties X = q + ½ and their neighbours n ± 1. a'·2^qb = (2q+1)·b
-  // needs b = m·2^qb (possible when W − 1 ≥ qb); then a' = (2q+1)·m, a = a' (if < 2^W) or a'/2.
-  if (w - 1 >= qb) {
-    for (int i = 0, made = 0; i < 8000 && made < 2000; ++i) {
-      const uint64_t m = rand_in((uint64_t)pow2(w - 1 - qb), (uint64_t)pow2(w - qb) - 1);
-      const uint64_t b = m << qb;
-      const uint64_t q = rand_in((uint64_t)pow2(qb - 1), (uint64_t)pow2(qb) - 1);
-      const u128 a1 = (u128)(2 * q + 1) * m;
-      if (a1 >= pow2(w) && (a1 & 1)) continue;  // k = 1 needs an even a'
-      const uint64_t a = (uint64_t)(a1 >= pow2(w) ? a1 >> 1 : a1);
-      if ((a & (uint64_t)(pow2(w - nb) - 1)) || (b & (uint64_t)(pow2(w - db) - 1))) continue;
-      const uint64_t n = a >> (w - nb), d = b >> (w - db);
-      for (int64_t delta : {-1, 0, 1}) {
-        const uint64_t nn = n + delta;
-        if (nn >= nlo && nn <= nhi) account(c, nn, d, acc);
-      }
-      ++made;
-    }
-  }
-  for (uint64_t i = 0; i < count; ++i) {
-    const uint64_t n = rand_in(nlo, nhi), d = rand_in(dlo, dhi);
-    account(c, n, d, acc);
-  }
-  DivErrorStats st;
-  st.count = acc.count;
-  st.max_err_ulp = acc.max;
-  st.mean_err_ulp = acc.sum / acc.count;
-  st.rms_err_ulp = std::sqrt(acc.sum2 / acc.count);
-  st.correctly_rounded_share = (double)acc.correct / acc.count;
-  st.correctly_rounded = acc.correct == acc.count;
-  return st;
-}
-
-// ---- sweep -----------------------------------------------------------------------------------
-
-std::vector<DivConfig> div_sweep_configs() {
-  std::vector<DivConfig> v;
-  const DivConfig base;
-  for (DivSchedule sch : {DivSchedule::Pipelined, DivSchedule::Iterative})
-    for (int k : {1, 2, 4}) {
-      DivConfig c = base;
-      c.algorithm = DivAlgorithm::Radix2;
-      c.schedule = sch;
-      c.bits_per_stage = k;
-      v.push_back(c);
-    }
-  // recip_mul: (seed index bits, seed bits, NR steps, iterate fraction bits), including the
-  // ANCHORS table designs and ones too coarse for the ±1 correction.
-  const int rm[][4] = {{5, 7, 2, 28},  {6, 8, 2, 28},  {8, 8, 2, 28},  {8, 8, 2, 26},
-                       {8, 8, 2, 25},  {12, 14, 1, 28}, {13, 15, 1, 28}, {8, 8, 1, 28},
-                       {10, 10, 1, 28}, {6, 8, 1, 28},  {4, 4, 2, 28},  {4, 4, 3, 28}};
-  for (const auto& p : rm) {
-    DivConfig c = base;
-    c.algorithm = DivAlgorithm::RecipMul;
-    c.seed_index_bits = p[0];
-    c.seed_bits = p[1];
-    c.nr_steps = p[2];
-    c.nr_frac_bits = p[3];
-    v.push_back(c);
-  }
-  return v;
-}
-
-std::string div_label(const DivConfig& c) {
-  if (c.algorithm == DivAlgorithm::Radix2)
-    return "radix2 k=" + std::to_string(c.bits_per_stage) +
-           (c.schedule == DivSchedule::Iterative ? " iter" : " pipe");
-  return "recip_mul " + std::to_string(1 << c.seed_index_bits) + "x" + std::to_string(c.seed_bits) +
-         " nr" + std::to_string(c.nr_steps) + " f" + std::to_string(c.nr_frac_bits);
 }
 
 }  // namespace fxr

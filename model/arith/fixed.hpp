@@ -1,4 +1,10 @@
-// model/arith/fixed.hpp — the bit-exact integer primitives every stage is built from.
+// model/arith/fixed.hpp — bit-exact fixed-point primitives: quantisation (rounding, overflow)
+// of integer codes whose format an FxFormat carries, as sc_fixed defines them.
+//
+// The stages use the normalisation and rounding here (normalize_fx in fxfloat.hpp, the RNE of
+// round.hpp through shift_round); convert / mac are the general sc_fixed-compatible operations
+// the benchmarks and tests compare against SystemC. Every round-to-nearest-even decision is
+// round.hpp's rne_round_up.
 //
 // Values are plain two's-complement integers (int64_t, or i128 where a product needs more
 // than 64 bits) whose meaning — width, binary point, signedness — is carried by an FxFormat.
@@ -9,6 +15,8 @@
 
 #include <cstdint>
 #include <string>
+
+#include "model/arith/round.hpp"
 
 namespace fxr {
 
@@ -89,10 +97,8 @@ inline S shift_round_right(S x, int shift, Round r) {
     case Round::Trunc: return floor_q;
     case Round::TruncZero: return x < 0 ? floor_q + 1 : floor_q;
     case Round::HalfUp: return rem >= half ? floor_q + 1 : floor_q;
-    case Round::HalfEven:
-      if (rem > half) return floor_q + 1;
-      if (rem < half) return floor_q;
-      return (floor_q & 1) ? floor_q + 1 : floor_q;
+    case Round::HalfEven:  // 2·rem < 2^(shift+1) fits U (shift ≤ bits(S) − 2)
+      return rne_round_up<U>((U)floor_q, rem, half << 1) ? floor_q + 1 : floor_q;
     case Round::HalfAway:
       if (rem > half) return floor_q + 1;
       if (rem < half) return floor_q;

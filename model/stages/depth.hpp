@@ -12,6 +12,7 @@
 
 #include <cstdint>
 
+#include "model/arith/round.hpp"
 #include "model/stages/interp.hpp"
 
 namespace fxr {
@@ -46,10 +47,7 @@ struct DepthStepper {
     if (r >= den) r -= den, q += 1;
   }
   // Round to nearest, ties to even.
-  uint32_t code() const {
-    const i128 r2 = 2 * r;
-    return (uint32_t)((r2 > den || (r2 == den && (q & 1))) ? q + 1 : q);
-  }
+  uint32_t code() const { return (uint32_t)(rne_round_up<i128>(q, r, den) ? q + 1 : q); }
 };
 
 // Contract: the depth comparison `incoming func stored` (GL / D3D semantics).

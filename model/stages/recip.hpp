@@ -7,16 +7,12 @@
 //
 // Significand datapath (the pipelined RTL rtl/fxr_recip.sv computes exactly this):
 //   x = m · 2^−(n−1) ∈ [1, 2)
-//   y0 = seed[top s fraction bits of x]           s = seed_index_bits, k = seed_frac_bits:
-//                                                 y0 = (2^k + entry) · 2^−(k+1) ∈ [1/2, 1)
-//   repeat nr_steps times (F = nr_frac_bits):
-//     p = trunc_F(x · y)                          truncation (precision lost, < 2^−F)
-//     t = ~p = 2 − 2^−F − p                       ones' complement: t ≤ 2 − x·y, never above
-//     y = trunc_F(y · t)                          truncation (precision lost, < 2^−F)
-//   → 0 ≤ 1/x − y (one-sided: y never exceeds 1/x, docs/arith.md proves it)
+//   y = the reciprocal core (model/arith/recip_core.hpp): minimax seed table, nr_steps one-sided
+//       Newton–Raphson steps at F = nr_frac_bits → 0 ≤ 1/x − y
 //   K = round_half_up_o(y)                        rounding to o fraction bits (precision lost)
-//   remainder: K += (m · (2K+1) < 2^(n+o))        exact midpoint test: is 1/x above K + ½ ulp?
-//   K = 2^o → 1.0 (exp_adj 0), else K · 2^−o (exp_adj −1)
+//   correction = remainder: K = min(K, 2^o − 1), then the RNE decision (model/arith/round.hpp) of
+//       the exact midpoint test: up when m · (2K+1) < 2^(n+o) (1/x above K + ½ ulp; never equal)
+//   K (+ up) = 2^o → 1.0 (exp_adj 0), else K · 2^−o (exp_adj −1)
 #pragma once
 
 #include <cstdint>
@@ -25,6 +21,9 @@
 #include <vector>
 
 #include "model/arith/fxfloat.hpp"
+#include "model/arith/recip_core.hpp"
+#include "model/arith/round.hpp"
+#include "model/unit/stage.hpp"
 
 namespace fxr {
 
@@ -73,13 +72,10 @@ inline int recip_exp_max(const RecipConfig& c) { return (1 << (c.exp_bits - 1)) 
 //   out: 1/x ≈ sig · 2^−(o−1) · 2^exp_adj, sig ∈ [2^(o−1), 2^o) (o = out_sig_bits), exp_adj ∈ {0, −1}
 //        (0 only when the result is exactly 1.0, i.e. x = 1 or rounding up to 1.0).
 //   rounding: correction = remainder → round to nearest (even; ties never occur) when the NR error
-//   is below 1 ulp (valid configurations: proven by recip_cost().error_bound_ulp, checked
-//   exhaustively); correction = none → round to nearest of the NR result y ≤ 1/x.
+//   is below 1 ulp (valid configurations: proven by recip_bound().error_bound_ulp, checked
+//   exhaustively); correction = none → round to nearest (half up) of the NR result y ≤ 1/x.
 //   No overflow is possible. m outside the range: undefined (the caller normalises).
-struct RecipSig {
-  uint64_t sig = 0;
-  int exp_adj = 0;
-};
+using RecipSig = RoundedSig;
 RecipSig recip_sig(const RecipConfig& cfg, uint64_t m);  // caches the table of the last cfg per thread
 
 struct RecipResult {
@@ -99,67 +95,43 @@ struct RecipResult {
 //   1/|w| never falls below 2^exp_min for an in-range w (−(exp_max) − 1 = exp_min), no underflow.
 RecipResult recip(const RecipConfig& cfg, const FxFloat& w);
 
-// Seed table, generated (never pasted): entry i covers x ∈ [1 + i·2^−s, 1 + (i+1)·2^−s) and holds
-// the k bits after the leading one of y0 = (2^k + entry) · 2^−(k+1), the grid value that minimises
-// the largest relative error |1 − x·y0| over the segment (minimax, Das Sarma & Matula), ties to
-// the smaller y0. Exact integer arithmetic.
+// Seed table (k = seed_frac_bits bits per entry after the implied leading one): the reciprocal
+// core's minimax table, recip_core_seed_table (model/arith/recip_core.hpp). Validates cfg.
 std::vector<uint64_t> recip_seed_table(const RecipConfig& cfg);
 
-// Prepared unit: the table and derived widths computed once; sig() is the hot path.
+// The reciprocal core's shape for this unit (x_bits = in_sig_bits).
+RecipCoreShape recip_core_shape(const RecipConfig& cfg);
+
+// Prepared unit: the core and derived widths computed once; sig() is the hot path.
 class RecipUnit {
  public:
   explicit RecipUnit(const RecipConfig& cfg);
   const RecipConfig& config() const { return cfg_; }
   // y = NR result before the final rounding, as an integer with nr_frac_bits fraction bits.
-  uint64_t approx(uint64_t m) const;
+  uint64_t approx(uint64_t m) const { return core_.approx(m); }
   RecipSig round(uint64_t m, uint64_t y) const;  // final rounding (+ correction) of approx(m)
   RecipSig sig(uint64_t m) const { return round(m, approx(m)); }
   RecipResult operator()(const FxFloat& w) const;
 
  private:
-  template <class W>
-  uint64_t approx_w(uint64_t m) const;
-
   RecipConfig cfg_;
-  std::vector<uint32_t> seed_;  // entries with the leading one: 2^k + entry
-  int n_, o_, s_, k_, f_;
-  bool narrow_;  // every product fits 64 bits: uint64_t arithmetic (same results, faster)
+  RecipCore core_;
+  int n_, o_, f_;
+  bool narrow_;  // the back-multiply m·(2K+1) and 2^(n+o) fit 64 bits
 };
 
-struct RecipCost {
-  int latency = 0;          // cycles from input handshake to output valid (RTL: 1 + 2·nr_steps + rounding)
-  int ii = 1;               // initiation interval (fully pipelined)
-  int64_t table_entries = 0;
-  int table_width = 0;      // bits stored per entry (the leading one is implied)
-  int64_t table_bits = 0;   // table_entries × table_width
-  std::vector<std::pair<int, int>> multipliers;  // operand widths (a, b) of every multiplier
-  int64_t mult_bits = 0;    // Σ a·b over the multipliers (partial-product bits: an area proxy)
-  int64_t area_proxy = 0;   // table_bits + mult_bits (for ranking; Yosys gives real LUT counts)
-  double seed_rel_err = 0;  // max |1 − x·y0| over the table (exact endpoints)
+// Cost of rtl/fxr_recip.sv (the one StageCost shape, model/unit/stage.hpp):
+//   latency = 1 (seed table) + 2·nr_steps (x·y → t, y·t → y) + 1 (round) + 1 if corrected;
+//   ii = 1; table_bits = 2^s · k; multipliers: the core's (per step x·y and y·t) and, corrected,
+//   the back-multiply n × (o+1); adder_bits and ff_bits are not estimated for this unit (0).
+StageCost recip_cost(const RecipConfig& cfg);
+
+// The a-priori error analysis of a configuration (docs/arith.md), apart from its cost.
+struct RecipBound {
+  double seed_rel_err = 0;     // max |1 − x·y0| over the table (exact endpoints)
   double error_bound_ulp = 0;  // a-priori bound on 1/x − y (before rounding), ulps of the output
   bool valid = false;          // bound proves: remainder → correctly rounded; none → faithful
 };
-RecipCost recip_cost(const RecipConfig& cfg);
-
-struct RecipErrorStats {
-  double max_err_ulp_before_round = 0;  // max |1/x − y|, y the NR result before rounding
-  double max_err_ulp = 0;               // max |result − 1/x|
-  double mean_err_ulp = 0;
-  double rms_err_ulp = 0;
-  double correctly_rounded_share = 0;   // result == RN(1/x)
-  bool faithful = false;                // max_err_ulp < 1
-  uint64_t count = 0;                   // significands measured (2^(n−1))
-};
-// Exhaustive over every significand m ∈ [2^(n−1), 2^n); ulps of the exact result's binade.
-// Errors from exact integer numerators (doubles only for the statistics). Multi-threaded over
-// fixed chunks combined in order: results do not depend on the thread count.
-RecipErrorStats recip_measure(const RecipConfig& cfg);
-
-// The configurations a sweep covers: the anchor designs (ANCHORS.md) and the neighbourhood of the
-// default, each with and without correction. The default configuration is among them.
-std::vector<RecipConfig> recip_sweep_configs();
-
-// Short label, e.g. "64x6+2NR f27 rem".
-std::string recip_label(const RecipConfig& cfg);
+RecipBound recip_bound(const RecipConfig& cfg);
 
 }  // namespace fxr

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "model/config/config.hpp"
+#include "analysis/measure.hpp"
 #include "model/arith/div.hpp"
 
 using namespace fxr;
@@ -302,7 +303,7 @@ TEST(DivMeasure, DefaultsAreCorrectlyRoundedAndCoarseSeedsAreNot) {
   DivConfig c;
   for (DivAlgorithm a : {DivAlgorithm::Radix2, DivAlgorithm::RecipMul}) {
     c.algorithm = a;
-    const DivErrorStats s = div_measure(c, 100000, 3);
+    const ErrorStats s = measure(c, MeasureOptions{false, 100000, 3});
     EXPECT_TRUE(s.correctly_rounded) << div_label(c);
     EXPECT_LE(s.max_err_ulp, 0.5) << div_label(c);
     EXPECT_GT(s.count, 100000u);
@@ -312,7 +313,7 @@ TEST(DivMeasure, DefaultsAreCorrectlyRoundedAndCoarseSeedsAreNot) {
   c.seed_index_bits = 4;
   c.seed_bits = 4;
   c.nr_steps = 1;
-  const DivErrorStats s = div_measure(c, 100000, 3);
+  const ErrorStats s = measure(c, MeasureOptions{false, 100000, 3});
   EXPECT_FALSE(s.correctly_rounded);
   EXPECT_GT(s.max_err_ulp, 1.0);
 }
@@ -337,10 +338,10 @@ TEST(DivConfig, SweepConfigurationsAreValidAndMeasurable) {
   for (const DivConfig& c : div_sweep_configs()) {
     DivConfig d;
     from_json_params(to_json_params(c), d, div_label(c));  // within every range
-    const DivCost k = div_cost(c);
+    const StageCost k = div_cost(c);
     EXPECT_GE(k.latency, 2) << div_label(c);
     EXPECT_GE(k.ii, 1) << div_label(c);
-    const DivErrorStats s = div_measure(c, 2000, 4);
+    const ErrorStats s = measure(c, MeasureOptions{false, 2000, 4});
     EXPECT_LT(s.max_err_ulp, 1e6) << div_label(c);
   }
 }

@@ -1,5 +1,5 @@
 // Shared by recip_test.cpp and recip_slow_test.cpp: independent exact-integer checks of the
-// reciprocal unit (nothing here calls recip_measure or reuses the unit's rounding code).
+// reciprocal unit (nothing here calls the measurement (analysis/measure.hpp) or reuses the unit's rounding code).
 #pragma once
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Reciprocal unit (stage 3) against exact arithmetic. Every expected value comes from an
-// independent integer division (or GMP rationals) written here, never from recip_measure.
+// independent integer division (or GMP rationals) written here, never from the measurement (analysis/measure.hpp).
 #include <gmpxx.h>
 #include <gtest/gtest.h>
 
@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "model/config/config.hpp"
+#include "analysis/measure.hpp"
 #include "model/stages/recip.hpp"
 #include "recip_check.hpp"
 
@@ -35,13 +36,13 @@ TEST(Recip, CorrectlyRoundedForAllMantissas) {
 
 TEST(Recip, MeasureReportsTheDefaultAsCorrectlyRounded) {
   const RecipConfig cfg;
-  const RecipErrorStats st = recip_measure(cfg);
+  const ErrorStats st = measure(cfg);
   EXPECT_EQ(st.count, pow2(cfg.in_sig_bits - 1));
   EXPECT_EQ(st.correctly_rounded_share, 1.0);
   EXPECT_LE(st.max_err_ulp, 0.5);
   EXPECT_TRUE(st.faithful);
   // The proof behind the default: the a-priori bound covers the measured error and is below 1 ulp.
-  const RecipCost cost = recip_cost(cfg);
+  const RecipBound cost = recip_bound(cfg);
   EXPECT_TRUE(cost.valid);
   EXPECT_LT(cost.error_bound_ulp, 1.0);
   EXPECT_LE(st.max_err_ulp_before_round, cost.error_bound_ulp);
@@ -56,7 +57,7 @@ TEST(Recip, SweepContainsTheDefault) {
 TEST(Recip, ValidSweepConfigsAreFaithfulAndCorrectedOnesCorrectlyRoundedOnASubset) {
   int valid = 0;
   for (const RecipConfig& cfg : recip_sweep_configs()) {
-    const RecipCost cost = recip_cost(cfg);
+    const RecipBound cost = recip_bound(cfg);
     if (!cost.valid) continue;
     ++valid;
     const Exhaustive r = check_all(cfg, 61);
@@ -77,7 +78,7 @@ TEST(Recip, ValidSmallConfigsAreCorrectlyRoundedAtOtherWidths) {
         small_config(12, 18, 3, 5, 3, 22, RecipCorrection::Remainder),
         small_config(14, 14, 8, 9, 1, 17, RecipCorrection::Remainder),
         small_config(16, 10, 5, 6, 2, 16, RecipCorrection::None)}) {
-    const RecipCost cost = recip_cost(cfg);
+    const RecipBound cost = recip_bound(cfg);
     ASSERT_TRUE(cost.valid) << recip_label(cfg) << " bound " << cost.error_bound_ulp;
     const Exhaustive r = check_all(cfg);
     EXPECT_EQ(r.malformed, 0u) << recip_label(cfg);
@@ -92,11 +93,11 @@ TEST(Recip, MeasureAgreesWithIndependentCountOnANonFaithfulDesign) {
   // 32×7 seed + 2 NR without correction (ANCHORS.md: 94.5 % correctly rounded), a 30-bit datapath.
   const RecipConfig cfg = small_config(24, 24, 5, 7, 2, 30, RecipCorrection::None);
   const Exhaustive r = check_all(cfg);
-  const RecipErrorStats st = recip_measure(cfg);
+  const ErrorStats st = measure(cfg);
   EXPECT_EQ(st.correctly_rounded_share, (double)r.correctly_rounded / (double)r.count);
   EXPECT_EQ(st.faithful, r.unfaithful == 0);
   EXPECT_FALSE(st.faithful);
-  EXPECT_FALSE(recip_cost(cfg).valid);
+  EXPECT_FALSE(recip_bound(cfg).valid);
 }
 
 TEST(Recip, SeedTableIsMinimaxOnItsGrid) {
@@ -242,12 +243,12 @@ TEST(Recip, WideSignificandsAreRoundedToTheInputWidthFirst) {
 
 TEST(Recip, CostFieldsAreConsistent) {
   for (const RecipConfig& cfg : recip_sweep_configs()) {
-    const RecipCost c = recip_cost(cfg);
+    const StageCost c = recip_cost(cfg);
     const bool corr = cfg.correction == RecipCorrection::Remainder;
-    EXPECT_EQ(c.table_entries, (int64_t)pow2(cfg.seed_index_bits));
-    EXPECT_EQ(c.table_width, cfg.seed_frac_bits);
-    EXPECT_EQ(c.table_bits, c.table_entries * c.table_width);
-    EXPECT_EQ((int64_t)recip_seed_table(cfg).size(), c.table_entries);
+    // StageCost has no entries / width fields: the table is 2^s entries of k bits.
+    const int64_t table_entries = (int64_t)pow2(cfg.seed_index_bits);
+    EXPECT_EQ(c.table_bits, table_entries * cfg.seed_frac_bits);
+    EXPECT_EQ((int64_t)recip_seed_table(cfg).size(), table_entries);
     EXPECT_EQ(c.ii, 1);
     // Seed register, two stages per NR step, rounding, and the correction stage.
     EXPECT_EQ(c.latency, 1 + 2 * cfg.nr_steps + 1 + (corr ? 1 : 0));
@@ -259,7 +260,7 @@ TEST(Recip, CostFieldsAreConsistent) {
       bits += (int64_t)a * b;
     }
     EXPECT_EQ(c.mult_bits, bits);
-    EXPECT_EQ(c.area_proxy, c.table_bits + c.mult_bits);
+    EXPECT_EQ(c.area_proxy(), c.table_bits + c.mult_bits);
   }
 }
 
