@@ -2,8 +2,9 @@
 """Synthesis cost of unit configurations: LUT4s, logic depth, Fmax.
 
 For each configuration in --configs (JSON list of {"id", "label", "params": {CamelName: int}},
-written by `fxraster sweep UNIT --synth`), synthesises rtl/fxr_<unit>.sv (plus the other
-rtl/fxr_<unit>_*.sv files it instantiates) with the parameters set by `chparam`:
+written by `fxraster sweep UNIT --synth`), synthesises rtl/fxr_<unit>.sv (read with every other
+rtl/fxr_*.sv file: units share modules such as fxr_seed_rom, fxr_nr_step, fxr_round; synthesis
+keeps what the top instantiates) with the parameters set by `chparam`:
 
   generic:  yosys  read_verilog -sv PKG RTL...; chparam ...; synth -flatten -top T; abc -lut 4;
                    opt_clean; stat; ltp -noff          -> LUT4 count, depth (LUT levels)
@@ -28,7 +29,7 @@ import sys
 import tempfile
 import time
 
-FLOW_VERSION = "2"  # bump when the flow below changes (invalidates the cache)
+FLOW_VERSION = "3"  # bump when the flow below changes (invalidates the cache)
 HX8K_LCS = 7680
 TOOL_TIMEOUT_S = 1800
 
@@ -37,7 +38,7 @@ def rtl_files(rtl_dir, unit):
     top = os.path.join(rtl_dir, "fxr_%s.sv" % unit)
     if not os.path.exists(top):
         raise SystemExit("synth_cost.py: %s: not found (the unit's RTL has not landed?)" % top)
-    others = sorted(glob.glob(os.path.join(rtl_dir, "fxr_%s_*.sv" % unit)))
+    others = sorted(f for f in glob.glob(os.path.join(rtl_dir, "fxr_*.sv")) if f != top)
     return [top] + others
 
 
