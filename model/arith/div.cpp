@@ -171,7 +171,7 @@ DivSig div_sig_recip_mul(const DivConfig& c, uint64_t n, uint64_t d) {
   }
   // If the approximation was more than one ulp off (inaccurate configurations only), r is
   // still outside [0, b): clamp it so the rounding below stays defined. Not correctly rounded
-  // then; div_measure reports by how much.
+  // then; the measurement (analysis/measure.hpp) reports by how much.
   if (r < 0) r = 0;
   if (r >= bb) r = bb - 1;
   // Clamp q̃ into the significand range for the same configurations (exact ones never clamp).
