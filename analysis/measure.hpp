@@ -50,5 +50,7 @@ std::vector<DivConfig> div_sweep_configs();
 // Short labels for reports, e.g. "64x6+2NR f26 rem", "radix2 k=1 pipe", "recip_mul 256x8 nr2 f28".
 std::string recip_label(const RecipConfig& cfg);
 std::string div_label(const DivConfig& cfg);
+inline std::string label(const RecipConfig& cfg) { return recip_label(cfg); }
+inline std::string label(const DivConfig& cfg) { return div_label(cfg); }
 
 }  // namespace fxr

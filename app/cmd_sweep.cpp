@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include "command.hpp"
@@ -99,102 +100,98 @@ double ns_per_call(F&& f) {
   return std::chrono::duration<double, std::nano>(t1 - t0).count() / (double)kTimingCalls;
 }
 
-SweepTable sweep_recip(const Opts& o) {
-  SweepTable t;
-  t.unit = "recip";
-  const std::vector<MetricCol> cols = {
+// The columns every unit has: its StageCost (model/unit/stage.hpp), then its ErrorStats
+// (analysis/measure.hpp); a unit adds its own columns after them.
+const std::vector<MetricCol>& common_cols() {
+  static const std::vector<MetricCol> cols = {
       {"latency", "cycles from input to output (RTL register stages)", true},
       {"ii", "initiation interval, cycles between inputs", true},
-      {"table_bits", "seed table bits (entries x stored width)", true},
+      {"table_bits", "seed ROM bits (entries x stored width)", true},
       {"multipliers", "number of multipliers", true},
       {"mult_bits", "sum of a*b over the multipliers (partial-product bits, an area proxy)", true},
-      {"area_proxy", "table_bits + mult_bits", true},
-      {"error_bound_ulp", "a-priori bound on 1/x - y before rounding, output ulps", false},
-      {"bound_valid", "1 when the bound proves correct rounding (remainder) / faithfulness (none)", true},
-      {"max_err_ulp_before_round", "max |1/x - y|, y the Newton-Raphson result before rounding, ulps", false},
-      {"max_err_ulp", "max |result - 1/x| over all significands, ulps of the result", false},
-      {"mean_err_ulp", "mean |result - 1/x|, ulps", false},
-      {"rms_err_ulp", "RMS of result - 1/x, ulps", false},
-      {"correctly_rounded_share", "share of significands whose result equals RN(1/x)", false},
+      {"adder_bits", "adder / subtractor / comparator bits, summed (0: not estimated for the unit)", true},
+      {"ff_bits", "pipeline register bits, estimate (0: not estimated for the unit)", true},
+      {"area_proxy", "table_bits + mult_bits + adder_bits (ranking only)", true},
+      {"max_err_ulp", "max |result - exact| over the measured inputs, ulps of the result", false},
+      {"mean_err_ulp", "mean |result - exact|, ulps", false},
+      {"rms_err_ulp", "RMS of result - exact, ulps", false},
+      {"correctly_rounded_share", "share of inputs whose result equals RN(exact)", false},
+      {"correctly_rounded", "1 when every measured input is correctly rounded", true},
       {"faithful", "1 when max_err_ulp < 1", true},
-      {"count", "significands measured (exhaustive: 2^(in_sig_bits-1))", true},
-      {"model_ns_per_op", "model speed: ns per RecipUnit::sig call on this machine (not reproducible)", false},
+      {"count", "inputs measured", true},
   };
-  for (const auto& c : cols) t.metrics.push_back(c);
+  return cols;
+}
+
+std::vector<double> common_metrics(const fxr::StageCost& k, const fxr::ErrorStats& e) {
+  return {(double)k.latency,     (double)k.ii,        (double)k.table_bits, (double)k.multipliers.size(),
+          (double)k.mult_bits,   (double)k.adder_bits, (double)k.ff_bits,    (double)k.area_proxy(),
+          e.max_err_ulp,         e.mean_err_ulp,      e.rms_err_ulp,        e.correctly_rounded_share,
+          (double)e.correctly_rounded, (double)e.faithful, (double)e.count};
+}
+
+// One sweep: for every configuration, the common columns, `extra(c, cost, stats)` (the unit's
+// own columns, `extra_cols`), and the model speed of `call(c)` (a function j → significand).
+template <class Cfg, class Extra, class Call>
+SweepTable sweep_unit(const Opts& o, const std::string& unit, const std::vector<Cfg>& configs,
+                      const std::vector<MetricCol>& extra_cols, const fxr::MeasureOptions& mo,
+                      Extra&& extra, Call&& call, const std::string& speed_doc) {
+  SweepTable t;
+  t.unit = unit;
+  t.metrics = common_cols();
+  for (const auto& c : extra_cols) t.metrics.push_back(c);
+  t.metrics.push_back({"model_ns_per_op", speed_doc, false});
   t.text_cols.push_back({"multiplier_widths", "operand widths a x b of every multiplier", false});
-  const auto configs = fxr::recip_sweep_configs();
-  const fxr::RecipConfig def;
+  const Cfg def;
   for (size_t i = 0; i < configs.size(); ++i) {
-    const auto& c = configs[i];
-    fxr::validate(c, "recip sweep: " + fxr::recip_label(c));  // ranges and recip rules
-    SweepRow r = make_row("recip", c, def, fxr::recip_label(c));
-    const fxr::StageCost k = fxr::recip_cost(c);
-    const fxr::RecipBound bound = fxr::recip_bound(c);
-    const fxr::ErrorStats e = fxr::measure(c, fxr::MeasureOptions{});
-    double ns = NAN;
-    if (!o.no_timing) {
-      const fxr::RecipUnit u(c);
-      const uint64_t lo = uint64_t(1) << (c.in_sig_bits - 1);
-      const uint64_t span_mask = lo - 1;
-      ns = ns_per_call([&](uint64_t j) { return u.sig(lo | ((j * 0x9E3779B97F4A7C15ull) & span_mask)).sig; });
-    }
-    r.metrics = {(double)k.latency,  (double)k.ii,        (double)k.table_bits, (double)k.multipliers.size(),
-                 (double)k.mult_bits, (double)k.area_proxy(), bound.error_bound_ulp, (double)bound.valid,
-                 e.max_err_ulp_before_round, e.max_err_ulp, e.mean_err_ulp, e.rms_err_ulp,
-                 e.correctly_rounded_share, (double)e.faithful, (double)e.count, ns};
+    const Cfg& c = configs[i];
+    const std::string label = fxr::label(c);
+    fxr::validate(c, unit + " sweep: " + label);  // ranges and the unit's rules
+    SweepRow r = make_row(unit, c, def, label);
+    const fxr::StageCost k = fxr::cost(c);
+    const fxr::ErrorStats e = fxr::measure(c, mo);
+    r.metrics = common_metrics(k, e);
+    for (double v : extra(c, e)) r.metrics.push_back(v);
+    r.metrics.push_back(o.no_timing ? NAN : ns_per_call(call(c)));
     r.texts = {multipliers_text(k.multipliers)};
     t.rows.push_back(std::move(r));
-    fxr::app::progress("sweep recip", i + 1, configs.size());
+    fxr::app::progress("sweep " + unit, i + 1, configs.size());
   }
   return t;
 }
 
-SweepTable sweep_div(const Opts& o, uint64_t count) {
-  SweepTable t;
-  t.unit = "div";
-  const std::vector<MetricCol> cols = {
-      {"latency", "cycles from input to output (RTL register stages)", true},
-      {"ii", "initiation interval, cycles between inputs", true},
-      {"table_bits", "seed ROM bits (recip_mul)", true},
-      {"multipliers", "number of multipliers", true},
-      {"mult_cells", "sum of a*b over the multipliers (partial-product bits)", true},
-      {"adder_bits_total", "adder / subtractor / comparator bits, summed", true},
-      {"ff_bits", "pipeline register bits (estimate)", true},
-      {"max_err_ulp", "max |result - n/d| over the measured pairs, ulps of the result", false},
-      {"mean_err_ulp", "mean |result - n/d|, ulps", false},
-      {"rms_err_ulp", "RMS of result - n/d, ulps", false},
-      {"correctly_rounded_share", "share of pairs whose result equals RN(n/d)", false},
-      {"correctly_rounded", "1 when every measured pair is correctly rounded", true},
-      {"count", "operand pairs measured (directed + random)", true},
-      {"model_ns_per_op", "model speed: ns per div_sig call on this machine (not reproducible)", false},
+SweepTable sweep_recip(const Opts& o) {
+  const std::vector<MetricCol> extra = {
+      {"error_bound_ulp", "a-priori bound on 1/x - y before rounding, output ulps", false},
+      {"bound_valid", "1 when the bound proves correct rounding (remainder) / faithfulness (none)", true},
+      {"max_err_ulp_before_round", "max |1/x - y|, y the Newton-Raphson result before rounding, ulps", false},
   };
-  for (const auto& c : cols) t.metrics.push_back(c);
-  t.text_cols.push_back({"multiplier_widths", "operand widths a x b of every multiplier", false});
-  const auto configs = fxr::div_sweep_configs();
-  const fxr::DivConfig def;
-  for (size_t i = 0; i < configs.size(); ++i) {
-    const auto& c = configs[i];
-    fxr::validate(c, "div sweep: " + fxr::div_label(c));  // ranges and div rules (model/config/validate.hpp)
-    SweepRow r = make_row("div", c, def, fxr::div_label(c));
-    const fxr::StageCost k = fxr::div_cost(c);
-    const fxr::ErrorStats e = fxr::measure(c, fxr::MeasureOptions{false, count, o.seed});
-    double ns = NAN;
-    if (!o.no_timing) {
-      const uint64_t nlo = uint64_t(1) << (c.num_bits - 1), dlo = uint64_t(1) << (c.den_bits - 1);
-      ns = ns_per_call([&](uint64_t j) {
-        const uint64_t h = j * 0x9E3779B97F4A7C15ull;
-        return fxr::div_sig(c, nlo | (h & (nlo - 1)), dlo | ((h >> 17) & (dlo - 1))).sig;
-      });
-    }
-    r.metrics = {(double)k.latency, (double)k.ii, (double)k.table_bits, (double)k.multipliers.size(),
-                 (double)k.mult_bits, (double)k.adder_bits, (double)k.ff_bits,
-                 e.max_err_ulp, e.mean_err_ulp, e.rms_err_ulp, e.correctly_rounded_share,
-                 (double)e.correctly_rounded, (double)e.count, ns};
-    r.texts = {multipliers_text(k.multipliers)};
-    t.rows.push_back(std::move(r));
-    fxr::app::progress("sweep div", i + 1, configs.size());
-  }
-  return t;
+  return sweep_unit(
+      o, "recip", fxr::recip_sweep_configs(), extra, fxr::MeasureOptions{},  // exhaustive
+      [](const fxr::RecipConfig& c, const fxr::ErrorStats& e) {
+        const fxr::RecipBound b = fxr::recip_bound(c);
+        return std::vector<double>{b.error_bound_ulp, (double)b.valid, e.max_err_ulp_before_round};
+      },
+      [](const fxr::RecipConfig& c) {
+        auto u = std::make_shared<fxr::RecipUnit>(c);
+        const uint64_t lo = uint64_t(1) << (c.in_sig_bits - 1);
+        return [u, lo](uint64_t j) { return u->sig(lo | ((j * 0x9E3779B97F4A7C15ull) & (lo - 1))).sig; };
+      },
+      "model speed: ns per RecipUnit::sig call on this machine (not reproducible)");
+}
+
+SweepTable sweep_div(const Opts& o, uint64_t count) {
+  return sweep_unit(
+      o, "div", fxr::div_sweep_configs(), {}, fxr::MeasureOptions{false, count, o.seed},
+      [](const fxr::DivConfig&, const fxr::ErrorStats&) { return std::vector<double>{}; },
+      [](const fxr::DivConfig& c) {
+        const uint64_t nlo = uint64_t(1) << (c.num_bits - 1), dlo = uint64_t(1) << (c.den_bits - 1);
+        return [c, nlo, dlo](uint64_t j) {
+          const uint64_t h = j * 0x9E3779B97F4A7C15ull;
+          return fxr::div_sig(c, nlo | (h & (nlo - 1)), dlo | ((h >> 17) & (dlo - 1))).sig;
+        };
+      },
+      "model speed: ns per div_sig call on this machine (not reproducible)");
 }
 
 // --synth: scripts/synth_cost.py synthesises every configuration (cached by id in

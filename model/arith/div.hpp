@@ -138,5 +138,6 @@ DivResult divide(const DivConfig& c, const FxFloat& num, const FxFloat& den);
 // (model/unit/stage.hpp); the latency formula is the one the RTL implements (docs/arith.md
 // "# Divider").
 StageCost div_cost(const DivConfig& c);
+inline StageCost cost(const DivConfig& c) { return div_cost(c); }  // the uniform name
 
 }  // namespace fxr

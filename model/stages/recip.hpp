@@ -125,6 +125,7 @@ class RecipUnit {
 //   ii = 1; table_bits = 2^s · k; multipliers: the core's (per step x·y and y·t) and, corrected,
 //   the back-multiply n × (o+1); adder_bits and ff_bits are not estimated for this unit (0).
 StageCost recip_cost(const RecipConfig& cfg);
+inline StageCost cost(const RecipConfig& cfg) { return recip_cost(cfg); }  // the uniform name
 
 // The a-priori error analysis of a configuration (docs/arith.md), apart from its cost.
 struct RecipBound {
