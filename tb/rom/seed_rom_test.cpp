@@ -33,36 +33,39 @@ struct Probe {
 
 }  // namespace
 
+// Reads every address of one ROM of the probe (`read(dut, idx)` sets the index, evaluates and
+// returns the entry) and compares it with the model's table; mismatch lines as tb/harness.hpp.
+template <class T, class Read>
+void expect_rom_equals(const char* unit, const std::vector<T>& table, Read&& read) {
+  Probe p;
+  uint64_t differ = 0;
+  for (size_t i = 0; i < table.size(); ++i) {
+    const uint64_t got = read(*p.dut, (uint32_t)i);
+    if (got != (uint64_t)table[i] && differ++ < 20)
+      ADD_FAILURE() << "MISMATCH " << unit << " seed idx=" << i << " rtl=" << got << " model=" << table[i];
+  }
+  EXPECT_FALSE(p.ctx->gotError());
+  EXPECT_EQ(differ, 0u) << unit << " seed ROM: checked=" << table.size() << " errors=" << differ;
+}
+
 TEST(FXR_ROM_SUITE, ReciprocalSeedRomEqualsTheModelTable) {
   const fxr::Config cfg = rom_config();
   const std::vector<uint64_t> table = fxr::recip_seed_table(cfg.recip);
   ASSERT_EQ(table.size(), size_t{1} << cfg.recip.seed_index_bits);
-  Probe p;
-  uint64_t differ = 0;
-  for (size_t i = 0; i < table.size(); ++i) {
-    p.dut->recip_idx_i = (uint32_t)i;
-    p.dut->eval();
-    if ((uint64_t)p.dut->recip_seed_o != table[i] && differ++ < 20)
-      ADD_FAILURE() << "MISMATCH recip seed idx=" << i << " rtl=" << (uint64_t)p.dut->recip_seed_o
-                    << " model=" << table[i];
-  }
-  EXPECT_FALSE(p.ctx->gotError());
-  EXPECT_EQ(differ, 0u) << "recip seed ROM: checked=" << table.size() << " errors=" << differ;
+  expect_rom_equals("recip", table, [](FXR_ROM_DUT& d, uint32_t i) {
+    d.recip_idx_i = i;
+    d.eval();
+    return (uint64_t)d.recip_seed_o;
+  });
 }
 
 TEST(FXR_ROM_SUITE, DividerSeedRomEqualsTheModelTable) {
   const fxr::Config cfg = rom_config();
   const std::vector<uint32_t> table = fxr::div_seed_table(cfg.div);
   ASSERT_EQ(table.size(), size_t{1} << cfg.div.seed_index_bits);
-  Probe p;
-  uint64_t differ = 0;
-  for (size_t i = 0; i < table.size(); ++i) {
-    p.dut->div_idx_i = (uint32_t)i;
-    p.dut->eval();
-    if ((uint32_t)p.dut->div_seed_o != table[i] && differ++ < 20)
-      ADD_FAILURE() << "MISMATCH div seed idx=" << i << " rtl=" << (uint32_t)p.dut->div_seed_o
-                    << " model=" << table[i];
-  }
-  EXPECT_FALSE(p.ctx->gotError());
-  EXPECT_EQ(differ, 0u) << "div seed ROM: checked=" << table.size() << " errors=" << differ;
+  expect_rom_equals("div", table, [](FXR_ROM_DUT& d, uint32_t i) {
+    d.div_idx_i = i;
+    d.eval();
+    return (uint64_t)d.div_seed_o;
+  });
 }
