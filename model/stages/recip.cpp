@@ -50,21 +50,23 @@ RecipUnit::RecipUnit(const RecipConfig& cfg)
   narrow_ = n_ + o_ + 1 <= 63;  // m·(2K+1) < 2^(n+o+1) and the constant 2^(n+o)
 }
 
-// Contract: y = approx(m) → RecipSig. K = y rounded to o fraction bits, half up (PRECISION LOST),
-// clamped below at 1/2 (1/x > 1/2 always). Without the correction K is the result. With it, K is
-// clamped to 2^o − 1 (K = 2^o means y ≥ 1 − ½ ulp, so RN(1/x) = 1.0 and the test below restores
-// it) and the RNE decision of the exact midpoint test adds one ulp when 1/x lies above K + ½:
-// x·(K + ½)·2^−o < 1 ⇔ m·(2K+1) < 2^(n+o). Ties cannot occur (docs/arith.md).
+// Contract: y = approx(m) → RecipSig. q = floor(y·2^o) and the rounding bit below it give
+// K = q + bit, y rounded to o fraction bits half up (PRECISION LOST), at least 1/2 (1/x > 1/2
+// always). Without the correction K is the result (round_increment: K = 2^o is 1.0). With it, K
+// is clamped to [2^(o−1), 2^o − 1] (K = 2^o means y ≥ 1 − ½ ulp, so RN(1/x) = 1.0 and the test
+// below restores it) and the RNE decision of the exact midpoint test adds one ulp when 1/x lies
+// above K + ½: x·(K + ½)·2^−o < 1 ⇔ m·(2K+1) < 2^(n+o). Ties cannot occur (docs/arith.md).
+// rtl/fxr_recip.sv computes the same steps (fxr_round for round_increment).
 RecipSig RecipUnit::round(uint64_t m, uint64_t y) const {
   const int drop = f_ - o_;  // ≥ 1 (recip_validate)
   const uint64_t lo = pow2(o_ - 1), hi = pow2(o_) - 1;
-  const uint64_t half_up = (uint64_t)shift_round((i128)y, drop, Round::HalfUp);
-  uint64_t k = std::max(half_up, lo);
+  const uint64_t q = y >> drop;                    // < 2^o: y < 1
+  const bool half = ((y >> (drop - 1)) & 1) != 0;  // the rounding bit (half up)
   if (cfg_.correction != RecipCorrection::Remainder) {
-    if (k > hi) return {lo, 0};  // K = 2^o: 1.0, the next binade
-    return {k, -1};
+    if (q < lo) return {lo, -1};  // y < 1/2 (inaccurate configurations): max(K, 2^(o−1))
+    return round_increment(q, half, o_, -1);
   }
-  k = std::min(k, hi);
+  const uint64_t k = std::clamp<uint64_t>(q + (half ? 1 : 0), lo, hi);
   // Sign of 2^(n+o) − m·(2K+1) = 2·(remainder of 2^(n−1+o) / m against K) − m.
   const int above = narrow_ ? (m * (2 * k + 1) < pow2(n_ + o_) ? 1 : -1)
                             : ((u128)m * (2 * k + 1) < ((u128)1 << (n_ + o_)) ? 1 : -1);
