@@ -9,6 +9,7 @@
 #include "command.hpp"
 #include "frontend/scene.hpp"
 #include "model/config/config.hpp"
+#include "model/config/json_input.hpp"
 
 namespace {
 
@@ -32,14 +33,7 @@ int run(const Opts& o) {
   fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.scene, so);
   if (!o.config.empty()) {
     // --config F: its fields override the scene's configuration (unit by unit, field by field).
-    std::ifstream in(o.config);
-    if (!in) throw fxr::ConfigError(o.config + ": cannot open the configuration file");
-    json cj;
-    try {
-      cj = json::parse(in);
-    } catch (const json::parse_error& e) {
-      throw fxr::ConfigError(o.config + ": not valid JSON: " + e.what());
-    }
+    const json cj = fxr::read_json_file(o.config, "configuration file");  // bounded, numbers checked
     fxr::config_fields_from_json(cj, o.config);  // types and ranges of the file on its own (fields named)
     json merged = fxr::config_to_json(sc.config);
     merged.merge_patch(cj);

@@ -18,6 +18,8 @@
 #include <glm/vec4.hpp>
 #include <tiny_obj_loader.h>
 
+#include "model/config/json_input.hpp"
+
 namespace fxr {
 
 namespace {
@@ -52,10 +54,11 @@ struct Node {
         ok |= it.key() == k;
         list += (list.empty() ? "" : ", ") + std::string(k);
       }
-      if (!ok) Node{it.value(), where, path + "/" + it.key()}.fail("unknown field (known: " + list + ")");
+      if (!ok) Node{it.value(), where, path + "/" + cut(it.key(), kMaxExcerptChars)}.fail("unknown field (known: " + list + ")");
     }
   }
-  std::string type_of() const { return std::string(j.type_name()) + " " + j.dump(); }
+  // Bounded: a huge or deep value is summarised (model/config/json_input.hpp).
+  std::string type_of() const { return json_typed_excerpt(j); }
   size_t array_size() const {
     if (!j.is_array()) fail("expected an array, got " + type_of());
     return j.size();
@@ -68,9 +71,12 @@ struct Node {
   }
   int integer(int lo, int hi) const {
     if (!j.is_number_integer()) fail("expected an integer, got " + type_of());
-    const int64_t v = j.get<int64_t>();
-    if (v < lo || v > hi) fail(std::to_string(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return (int)v;
+    // Checked: unsigned values beyond int64 are not wrapped (json_int compares them as such).
+    try {
+      return (int)json_int(j, lo, hi, "");
+    } catch (const ConfigError& e) {
+      fail(std::string(e.what()).substr(2));  // drop json_int's empty prefix ": "
+    }
   }
   bool boolean() const {
     if (!j.is_boolean()) fail("expected true or false, got " + type_of());
@@ -88,7 +94,7 @@ struct Node {
       if (s == n) return e;
       list += (list.empty() ? "" : ", ") + std::string(n);
     }
-    fail("'" + s + "' is not one of: " + list);
+    fail("'" + cut(s, kMaxExcerptChars) + "' is not one of: " + list);
   }
   // Exactly n numbers (or, with n == 0, any count).
   std::vector<double> numbers(size_t n) const {
@@ -141,18 +147,6 @@ glm::dmat4 parse_model(const Node& n) {
 
 float parse_f32_at(const Node& n) { return parse_f32(n.j, n.where, n.path); }
 
-int line_col(const std::string& text, size_t byte, int* col) {
-  int line = 1;
-  size_t line_start = 0;
-  for (size_t i = 0; i < byte && i < text.size(); ++i)
-    if (text[i] == '\n') {
-      ++line;
-      line_start = i + 1;
-    }
-  *col = (int)(byte - line_start);
-  return line;
-}
-
 std::string dir_of(const std::string& path) {
   const auto p = path.find_last_of('/');
   return p == std::string::npos ? "." : path.substr(0, p);
@@ -169,8 +163,85 @@ struct Mesh {
   std::vector<std::array<uint32_t, 3>> tri;
 };
 
+// OBJ indices are checked here before tinyobjloader sees them: it converts them with an
+// unchecked atoi (an index of 99999999999999999999 overflows into some valid vertex) and maps a
+// texcoord index it cannot use to "none". A face index must be a non-zero integer naming an
+// existing element: 1..N (N = the file's count of v / vt / vn lines), or −1..−n (n = the count
+// so far). Returns false with *why = "<file>:<line>: ...".
+bool check_obj_indices(const std::string& path, std::string* why) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(std::move(l));
+  if (in.bad()) {
+    *why = "read error";
+    return false;
+  }
+  auto keyword = [](const std::string& l, size_t* rest) {
+    size_t a = l.find_first_not_of(" \t");
+    if (a == std::string::npos) return std::string();
+    size_t b = l.find_first_of(" \t", a);
+    if (b == std::string::npos) b = l.size();
+    *rest = b;
+    return l.substr(a, b - a);
+  };
+  int64_t total[3] = {0, 0, 0};  // v, vt, vn
+  const char* kinds[3] = {"v", "vt", "vn"};
+  for (const auto& l : lines) {
+    size_t rest = 0;
+    const std::string k = keyword(l, &rest);
+    for (int t = 0; t < 3; ++t) total[t] += k == kinds[t];
+  }
+  const char* names[3] = {"vertex", "texcoord", "normal"};
+  int64_t so_far[3] = {0, 0, 0};
+  for (size_t ln = 0; ln < lines.size(); ++ln) {
+    const std::string& l = lines[ln];
+    size_t rest = 0;
+    const std::string k = keyword(l, &rest);
+    for (int t = 0; t < 3; ++t) so_far[t] += k == kinds[t];
+    if (k != "f") continue;
+    std::istringstream ss(l.substr(rest));
+    for (std::string tok; ss >> tok;) {
+      if (tok[0] == '#') break;
+      size_t start = 0;
+      for (int t = 0; t < 3 && start <= tok.size(); ++t) {
+        size_t slash = tok.find('/', start);
+        if (slash == std::string::npos) slash = tok.size();
+        const std::string part = tok.substr(start, slash - start);
+        start = slash + 1;
+        if (part.empty() && t > 0) continue;  // "1//3": no texcoord
+        const std::string where = path + ":" + std::to_string(ln + 1) + ": face " + names[t] + " index '" +
+                                  cut(part, kMaxExcerptChars) + "'";
+        // Checked integer: optional '-', digits, |value| ≤ the count (no overflow).
+        size_t i = part.size() > 0 && part[0] == '-' ? 1 : 0;
+        if (i == part.size()) {
+          *why = where + ": not an integer";
+          return false;
+        }
+        int64_t mag = 0;
+        for (; i < part.size(); ++i) {
+          if (part[i] < '0' || part[i] > '9') {
+            *why = where + ": not an integer";
+            return false;
+          }
+          mag = mag * 10 + (part[i] - '0');
+          if (mag > total[t]) break;  // already beyond every count: stop before it can overflow
+        }
+        const bool neg = part[0] == '-';
+        const int64_t limit = neg ? so_far[t] : total[t];
+        if (mag == 0 || mag > limit) {
+          *why = where + ": no such " + names[t] + " (the file has " + std::to_string(neg ? so_far[t] : total[t]) +
+                 (neg ? " before this line)" : ")");
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
 // Loads an OBJ through tinyobjloader (triangulated). Returns false with *why on failure.
 bool load_obj(const std::string& path, Mesh& m, std::string* why) {
+  if (!check_obj_indices(path, why)) return false;
   tinyobj::ObjReaderConfig rc;
   rc.triangulate = true;
   rc.vertex_color = false;
@@ -256,7 +327,11 @@ Camera parse_camera(const Node& n, double aspect) {
   const glm::dvec3 eye = vec3(n.at("eye")), target = vec3(n.at("target"));
   glm::dvec3 up(0, 1, 0);
   if (n.has("up")) up = vec3(n.at("up"));
-  if (glm::length(glm::cross(target - eye, up)) == 0.0) n.at("up").fail("'up' is parallel to the view direction (or eye == target)");
+  if (target == eye) n.at("target").fail("equals 'eye': the view direction is undefined");
+  if (glm::length(glm::cross(target - eye, up)) == 0.0) {
+    if (n.has("up")) n.at("up").fail("is parallel to the view direction (target − eye)");
+    Node{n.j, n.where, n.path + "/up"}.fail("the default up (0, 1, 0) is parallel to the view direction (target − eye): give 'up'");
+  }
   const double fovy = n.at("fovy_deg").number();
   if (!(fovy > 0 && fovy < 180)) n.at("fovy_deg").fail("must be in (0, 180)");
   const double zn = n.at("near").number(), zf = n.at("far").number();
@@ -419,9 +494,24 @@ void parse_clip(const Node& o, Scene& sc) {
 
 // ---- float32 text ---------------------------------------------------------------------------
 
+namespace {
+// Magnitudes at or above 2^128 − 2^103 (float32's largest finite value plus half an ulp) round to
+// infinity in float32: an overflow, not a number the scene can mean (docs/scene-format.md).
+const double kF32OverflowThreshold = std::ldexp(1.0, 128) - std::ldexp(1.0, 103);
+// "bits:" + this many lowercase hex digits is a raw float32 bit pattern.
+constexpr size_t kF32HexDigits = 8;
+constexpr size_t kBitsPrefixChars = 5;  // "bits:"
+constexpr int kHexRadix = 16;
+}  // namespace
+
 float parse_f32(const json& j, const std::string& where, const std::string& path) {
   const Node n{j, where, path};
-  if (j.is_number()) return (float)j.get<double>();  // double → float32 (see docs: hex for exact bits)
+  if (j.is_number()) {
+    const double d = j.get<double>();  // finite: parse_json_input rejects numbers beyond a double
+    if (std::fabs(d) >= kF32OverflowThreshold)
+      n.fail(cut(j.dump(), kMaxExcerptChars) + " overflows float32 (largest 3.4028235e38; write \"inf\" for infinity)");
+    return (float)d;  // double → float32, RNE (see docs: hex for exact bits)
+  }
   if (!j.is_string()) n.fail("expected a number or a hex-float string, got " + n.type_of());
   std::string s = j.get<std::string>();
   if (s == "nan") return f32_from_bits(0x7fc00000u);
@@ -429,23 +519,32 @@ float parse_f32(const json& j, const std::string& where, const std::string& path
   if (s == "inf" || s == "+inf") return f32_from_bits(0x7f800000u);
   if (s == "-inf") return f32_from_bits(0xff800000u);
   if (s.rfind("bits:", 0) == 0) {
-    // Raw IEEE-754 bit pattern, e.g. "bits:7fc00001" (NaN payloads, exact denormals).
-    const std::string h = s.substr(5);
-    char* end = nullptr;
-    const unsigned long v = h.size() == 8 ? std::strtoul(h.c_str(), &end, 16) : 0;
-    if (h.size() != 8 || !end || *end) n.fail("bad bit pattern '" + s + "' (expected bits:XXXXXXXX, 8 hex digits)");
-    return f32_from_bits((uint32_t)v);
+    // Raw IEEE-754 bit pattern, e.g. "bits:7fc00001" (NaN payloads, exact denormals): exactly 8
+    // lowercase hex digits, nothing else (no sign, no space, no 0x; strtoul would accept those).
+    const std::string h = s.substr(kBitsPrefixChars);
+    bool ok = h.size() == kF32HexDigits;
+    for (char c : h) ok = ok && ((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'));
+    if (!ok) n.fail("bad bit pattern '" + cut(s, kMaxExcerptChars) + "' (expected bits:xxxxxxxx, 8 lowercase hex digits)");
+    return f32_from_bits((uint32_t)std::strtoul(h.c_str(), nullptr, kHexRadix));
   }
   if (s.empty()) n.fail("empty number string");
+  const std::string shown = cut(s, kMaxExcerptChars);
+  // Only a plain decimal or hex-float literal; strtold alone would also take "infinity", "nan(…)",
+  // leading spaces and a leading '+'.
+  for (char c : s)
+    if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || c == 'x' || c == 'p' || c == 'X' || c == 'P' ||
+          (c >= 'A' && c <= 'F') || c == '.' || c == '-' || c == '+'))
+      n.fail("bad number '" + shown + "' (expected e.g. \"0x1.8p+1\" or \"1.5\", or \"inf\", \"nan\", \"bits:7fc00000\")");
   char* end = nullptr;
   errno = 0;
   const long double ld = std::strtold(s.c_str(), &end);
-  if (end == s.c_str() || *end) n.fail("bad number '" + s + "' (expected e.g. \"0x1.8p+1\" or \"1.5\")");
+  if (end == s.c_str() || *end) n.fail("bad number '" + shown + "' (expected e.g. \"0x1.8p+1\" or \"1.5\")");
   const bool hex = s.find("0x") != std::string::npos || s.find("0X") != std::string::npos;
   const float f = std::strtof(s.c_str(), nullptr);
-  if (!std::isfinite(f) && std::isfinite((double)ld)) n.fail("'" + s + "' overflows float32");
+  // Overflow (also beyond long double, e.g. "1e5000"): only "inf" / "-inf" mean infinity.
+  if (!std::isfinite(f)) n.fail("'" + shown + "' overflows float32 (write \"inf\" for infinity)");
   if (hex && (long double)f != ld)
-    n.fail("hex float '" + s + "' is not exactly representable in float32 (nearest: " + f32_to_hex(f) + ")");
+    n.fail("hex float '" + shown + "' is not exactly representable in float32 (nearest: " + f32_to_hex(f) + ")");
   return f;  // decimals: rounded once to the nearest float32 (strtof)
 }
 
@@ -503,25 +602,15 @@ glm::dvec2 texgen(TexGen mode, const glm::dvec3& q) {
 
 Scene parse_scene(const std::string& text, const std::string& where, const std::string& base_dir,
                   const SceneOptions& opt) {
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    int col = 0;
-    const size_t byte = e.byte > 0 ? e.byte - 1 : 0;
-    const int line = line_col(text, byte, &col);
-    std::string msg = e.what();
-    const auto p = msg.find("parse error");
-    if (p != std::string::npos) msg = msg.substr(p);
-    throw ConfigError(where + ":" + std::to_string(line) + ":" + std::to_string(col + 1) + ": JSON " + msg);
-  }
+  // Syntax errors with line:column, nesting bounded, numbers beyond a double named by path.
+  const json doc = parse_json_input(text, where);
   const Node root{doc, where, ""};
   root.expect_object({"version", "name", "viewport", "config", "state", "background", "camera", "texture", "varyings",
                       "objects"});
   const Node ver = root.at("version");
   if (!ver.j.is_number_integer()) ver.fail("expected an integer, got " + ver.type_of());
-  if (ver.j.get<int64_t>() != kSceneFormatVersion)
-    ver.fail(ver.j.dump() + " is not supported (this fxraster reads scene format version " +
+  if (ver.j != kSceneFormatVersion)  // compared as JSON numbers: no narrowing
+    ver.fail(json_excerpt(ver.j) + " is not supported (this fxraster reads scene format version " +
              std::to_string(kSceneFormatVersion) + ")");
 
   Scene sc;
@@ -575,7 +664,7 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
 
   if (root.has("background")) {
     const Node b = root.at("background");
-    if (!parse_hex_color(b.string(), &sc.background)) b.fail("expected a colour \"#rrggbb\", got " + b.j.dump());
+    if (!parse_hex_color(b.string(), &sc.background)) b.fail("expected a colour \"#rrggbb\", got " + b.type_of());
   } else {
     sc.background = pack_rgba(24, 24, 32);
   }
@@ -588,8 +677,17 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
     if (v.has("count")) sc.state.num_varyings = v.at("count").integer(0, kMaxVaryings);
     if (v.has("u")) sc.u_varying = v.at("u").integer(-1, kMaxVaryings - 1);
     if (v.has("v")) sc.v_varying = v.at("v").integer(-1, kMaxVaryings - 1);
-    if (sc.u_varying >= sc.state.num_varyings) v.at("u").fail("names varying " + std::to_string(sc.u_varying) + " but count is " + std::to_string(sc.state.num_varyings));
-    if (sc.v_varying >= sc.state.num_varyings) v.at("v").fail("names varying " + std::to_string(sc.v_varying) + " but count is " + std::to_string(sc.state.num_varyings));
+    // u / v default to varyings 0 and 1: name the field that is actually given.
+    auto check_uv = [&](const char* key, int index) {
+      if (index < sc.state.num_varyings) return;
+      const std::string count = std::to_string(sc.state.num_varyings);
+      if (v.has(key)) v.at(key).fail("names varying " + std::to_string(index) + " but count is " + count);
+      Node{v.j, v.where, v.path + "/count"}.fail(count + " leaves no varying for the texture coordinate '" + key +
+                                                  "' (default varying " + std::to_string(index) + "): give \"" +
+                                                  key + "\": -1 for no texture coordinate, or a larger count");
+    };
+    check_uv("u", sc.u_varying);
+    check_uv("v", sc.v_varying);
   }
   if (sc.state.num_varyings < 2 && !root.has("varyings")) sc.u_varying = sc.v_varying = -1;
 

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "model/config/json_input.hpp"
 #include "model/config/validate.hpp"
 
 namespace fxr {
@@ -59,8 +60,9 @@ Config config_fields_from_json(const nlohmann::json& j, const std::string& where
   if (!j.contains("version") || !j.at("version").is_number_integer())
     throw ConfigError(where + ": field 'version': missing or not an integer (expected " +
                       std::to_string(kConfigFormatVersion) + ")");
-  if (j.at("version").get<int>() != kConfigFormatVersion)
-    throw ConfigError(where + ": field 'version': " + j.at("version").dump() +
+  // Compared as JSON numbers: no narrowing (4294967297 is not version 1).
+  if (j.at("version") != kConfigFormatVersion)
+    throw ConfigError(where + ": field 'version': " + json_excerpt(j.at("version")) +
                       " is not supported (expected " + std::to_string(kConfigFormatVersion) + ")");
   std::vector<std::string> units{"version"};
   cfg.for_each_unit([&](const char* unit, auto& u) {
@@ -70,21 +72,14 @@ Config config_fields_from_json(const nlohmann::json& j, const std::string& where
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool known = false;
     for (const auto& u : units) known |= (u == it.key());
-    if (!known) throw ConfigError(where + ": unknown field '" + it.key() + "'");
+    if (!known) throw ConfigError(where + ": unknown field '" + cut(it.key(), kMaxExcerptChars) + "'");
   }
   return cfg;
 }
 
 Config load_config(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open the configuration file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw ConfigError(path + ": not valid JSON: " + e.what());
-  }
-  return config_from_json(j, path);
+  // Bounded nesting, numbers checked, errors with file:line:column (model/config/json_input.hpp).
+  return config_from_json(read_json_file(path, "configuration file"), path);
 }
 
 void emit_sv_package(std::ostream& os, const Config& cfg) {

@@ -1,5 +1,7 @@
 #include "model/config/param.hpp"
 
+#include "model/config/json_input.hpp"
+
 #include <algorithm>
 #include <cctype>
 
@@ -22,14 +24,8 @@ std::string camel_case(const std::string& snake) {
 void JsonReader::integer(const char* name, int& value, int lo, int hi, const char*) {
   seen.emplace_back(name);
   if (!in.contains(name)) return;
-  const auto& j = in.at(name);
-  if (!j.is_number_integer())
-    throw ConfigError(where + ": field '" + name + "': expected an integer, got " + j.dump());
-  const auto v = j.get<int64_t>();
-  if (v < lo || v > hi)
-    throw ConfigError(where + ": field '" + name + "': " + std::to_string(v) + " is outside [" +
-                      std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  value = (int)v;
+  // Checked: a non-integer, a fraction or a value beyond [lo, hi] (however large) is an error.
+  value = (int)json_int(in.at(name), lo, hi, where + ": field '" + name + "'");
 }
 
 void JsonReader::reject_unknown() const {
@@ -37,7 +33,7 @@ void JsonReader::reject_unknown() const {
     if (std::find(seen.begin(), seen.end(), it.key()) == seen.end()) {
       std::string known;
       for (const auto& s : seen) known += (known.empty() ? "" : ", ") + s;
-      throw ConfigError(where + ": unknown field '" + it.key() + "' (known: " + known + ")");
+      throw ConfigError(where + ": unknown field '" + cut(it.key(), kMaxExcerptChars) + "' (known: " + known + ")");
     }
   }
 }

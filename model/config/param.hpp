@@ -29,6 +29,12 @@ class ConfigError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Bounded quotations of input in messages (model/config/json_input.cpp).
+inline constexpr size_t kMaxExcerptChars = 80;
+std::string json_excerpt(const nlohmann::json& j);        // value only: 2, "x", array of 3 elements, …
+std::string json_typed_excerpt(const nlohmann::json& j);  // with the type: number 2, string "x", …
+std::string cut(const std::string& s, size_t n);
+
 // "seed_index_bits" -> "SeedIndexBits" (the RTL's UpperCamelCase parameter name).
 std::string camel_case(const std::string& snake);
 
@@ -58,7 +64,7 @@ struct JsonReader {
     if (!in.contains(name)) return;
     const auto& j = in.at(name);
     if (!j.is_string())
-      throw ConfigError(where + ": field '" + name + "': expected a string, got " + j.dump());
+      throw ConfigError(where + ": field '" + name + "': expected a string, got " + json_typed_excerpt(j));
     int i = 0;
     std::string allowed;
     for (const char* n : names) {
@@ -69,7 +75,7 @@ struct JsonReader {
       allowed += (i ? ", " : "") + std::string(n);
       ++i;
     }
-    throw ConfigError(where + ": field '" + name + "': '" + j.get<std::string>() +
+    throw ConfigError(where + ": field '" + name + "': '" + cut(j.get<std::string>(), kMaxExcerptChars) +
                       "' is not one of: " + allowed);
   }
   // After visiting: any key not visited is an error (a misspelt parameter must not be ignored).
@@ -119,7 +125,7 @@ nlohmann::json to_json_params(const Cfg& cfg) {
 // Overrides fields of cfg from JSON object j; throws ConfigError naming `where` and the field.
 template <class Cfg>
 void from_json_params(const nlohmann::json& j, Cfg& cfg, const std::string& where) {
-  if (!j.is_object()) throw ConfigError(where + ": expected a JSON object, got " + j.dump());
+  if (!j.is_object()) throw ConfigError(where + ": expected a JSON object, got " + json_typed_excerpt(j));
   JsonReader r{j, where, {}};
   cfg.visit(r);
   r.reject_unknown();

@@ -6,8 +6,10 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "model/arith/div.hpp"
+#include "model/config/json_input.hpp"
 #include "model/config/validate.hpp"
 #include "model/stages/recip.hpp"
 
@@ -275,14 +277,29 @@ VecManifest write_unit_vectors(const std::string& unit, const Config& cfg, uint6
 
 namespace {
 
-template <class T>
-T need(const nlohmann::json& j, const char* key, const std::string& where) {
+// Manifest fields, read with checked conversions: a value of the wrong type, a fraction, or a
+// number beyond the destination's range is an error naming the field (never truncated, never
+// wrapped; docs/vectors.md). Quoted values are bounded (json_excerpt).
+const nlohmann::json& need_field(const nlohmann::json& j, const char* key, const std::string& where) {
+  if (!j.is_object()) throw ConfigError(where + ": expected an object, got " + json_typed_excerpt(j));
   if (!j.contains(key)) throw ConfigError(where + ": field '" + key + "' is missing");
-  try {
-    return j.at(key).get<T>();
-  } catch (const nlohmann::json::exception&) {
-    throw ConfigError(where + ": field '" + key + "' has the wrong type: " + j.at(key).dump());
-  }
+  return j.at(key);
+}
+std::string need_string(const nlohmann::json& j, const char* key, const std::string& where) {
+  const auto& v = need_field(j, key, where);
+  if (!v.is_string()) throw ConfigError(where + ": field '" + key + "': expected a string, got " + json_typed_excerpt(v));
+  return v.get<std::string>();
+}
+bool need_bool(const nlohmann::json& j, const char* key, const std::string& where) {
+  const auto& v = need_field(j, key, where);
+  if (!v.is_boolean()) throw ConfigError(where + ": field '" + key + "': expected true or false, got " + json_typed_excerpt(v));
+  return v.get<bool>();
+}
+int need_int(const nlohmann::json& j, const char* key, const std::string& where) {
+  return (int)json_int(need_field(j, key, where), INT32_MIN, INT32_MAX, where + ": field '" + key + "'");
+}
+uint64_t need_uint(const nlohmann::json& j, const char* key, const std::string& where) {
+  return json_uint(need_field(j, key, where), UINT64_MAX, where + ": field '" + key + "'");
 }
 
 // First differing key between two JSON objects, as a path ("recip.seed_index_bits").
@@ -298,14 +315,13 @@ std::string first_difference(const nlohmann::json& a, const nlohmann::json& b, c
       if (!a.contains(it.key())) return (path.empty() ? it.key() : path + "." + it.key()) + " (missing on one side)";
     return "";
   }
-  return a == b ? "" : path + " (" + a.dump() + " vs " + b.dump() + ")";
+  return a == b ? "" : cut(path, kMaxExcerptChars) + " (" + json_excerpt(a) + " vs " + json_excerpt(b) + ")";
 }
 
 int hex_value(char c) {
   if (c >= '0' && c <= '9') return c - '0';
   if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
+  return -1;  // uppercase too: the format is lowercase hex (docs/vectors.md)
 }
 
 }  // namespace
@@ -314,35 +330,27 @@ VecFile read_vectors(const std::string& hex_path, const Config* expect) {
   VecFile vf;
   vf.hex_path = hex_path;
   const std::string mp = vec_manifest_path(hex_path);
-  nlohmann::json j;
-  {
-    std::ifstream in(mp);
-    if (!in) throw ConfigError(mp + ": cannot open the manifest of " + hex_path);
-    try {
-      j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-      throw ConfigError(mp + ": not valid JSON: " + e.what());
-    }
-  }
+  if (!std::ifstream(mp)) throw ConfigError(mp + ": cannot open the manifest of " + hex_path);
+  const nlohmann::json j = read_json_file(mp, "manifest");  // bounded, numbers checked
   if (!j.is_object()) throw ConfigError(mp + ": the manifest must be a JSON object");
-  if (need<std::string>(j, "format", mp) != kVectorFormatName)
+  if (need_string(j, "format", mp) != kVectorFormatName)
     throw ConfigError(mp + ": field 'format': expected \"" + kVectorFormatName + "\"");
-  const int fv = need<int>(j, "format_version", mp);
+  const int fv = need_int(j, "format_version", mp);
   if (fv != kVectorFormatVersion)
     throw ConfigError(mp + ": field 'format_version': " + std::to_string(fv) +
                       " is not supported (expected " + std::to_string(kVectorFormatVersion) + ")");
   VecManifest& m = vf.manifest;
-  m.generator_version = need<int>(j, "generator_version", mp);
+  m.generator_version = need_int(j, "generator_version", mp);
   if (m.generator_version != kVectorGeneratorVersion)
     throw ConfigError(mp + ": field 'generator_version': " + std::to_string(m.generator_version) +
                       " differs from this generator's " + std::to_string(kVectorGeneratorVersion) +
                       " (regenerate the file with `fxraster vectors`)");
-  m.unit = need<std::string>(j, "unit", mp);
-  m.hex_file = need<std::string>(j, "hex_file", mp);
+  m.unit = need_string(j, "unit", mp);
+  m.hex_file = need_string(j, "hex_file", mp);
   if (m.hex_file != base_name(hex_path))
     throw ConfigError(mp + ": field 'hex_file': \"" + m.hex_file + "\" is not " + base_name(hex_path));
-  m.seed = need<uint64_t>(j, "seed", mp);
-  m.count = need<uint64_t>(j, "count", mp);
+  m.seed = need_uint(j, "seed", mp);
+  m.count = need_uint(j, "count", mp);
   if (!j.contains("config") || !j.at("config").is_object())
     throw ConfigError(mp + ": field 'config' is missing or not an object");
   m.config = j.at("config");
@@ -368,32 +376,36 @@ VecFile read_vectors(const std::string& hex_path, const Config* expect) {
   for (size_t i = 0; i < lay.size(); ++i) {
     const std::string w = mp + ": fields[" + std::to_string(i) + "]";
     const auto& f = lay[i];
-    const auto name = need<std::string>(jf[i], "name", w);
+    const auto name = need_string(jf[i], "name", w);
     if (name != f.name) throw ConfigError(w + ": field 'name': \"" + name + "\", expected \"" + f.name + "\"");
     const std::string wf = mp + ": field '" + f.name + "'";
-    if (need<int>(jf[i], "width", wf) != f.width)
-      throw ConfigError(wf + ": width " + jf[i].at("width").dump() + ", the configuration gives " +
+    if (need_int(jf[i], "width", wf) != f.width)
+      throw ConfigError(wf + ": width " + json_excerpt(jf[i].at("width")) + ", the configuration gives " +
                         std::to_string(f.width));
-    if (need<int>(jf[i], "offset", wf) != f.offset)
-      throw ConfigError(wf + ": offset " + jf[i].at("offset").dump() + ", the layout gives " +
+    if (need_int(jf[i], "offset", wf) != f.offset)
+      throw ConfigError(wf + ": offset " + json_excerpt(jf[i].at("offset")) + ", the layout gives " +
                         std::to_string(f.offset));
-    if (need<std::string>(jf[i], "dir", wf) != dir_name(f.dir))
-      throw ConfigError(wf + ": dir " + jf[i].at("dir").dump() + ", expected \"" + dir_name(f.dir) + "\"");
-    if (need<bool>(jf[i], "signed", wf) != f.is_signed)
-      throw ConfigError(wf + ": signed " + jf[i].at("signed").dump() + " differs from the unit's");
+    if (need_string(jf[i], "dir", wf) != dir_name(f.dir))
+      throw ConfigError(wf + ": dir " + json_excerpt(jf[i].at("dir")) + ", expected \"" + dir_name(f.dir) + "\"");
+    if (need_bool(jf[i], "signed", wf) != f.is_signed)
+      throw ConfigError(wf + ": signed " + json_excerpt(jf[i].at("signed")) + " differs from the unit's");
   }
   m.layout = lay;
-  if (need<int>(j, "line_hex_digits", mp) != lay.digits())
-    throw ConfigError(mp + ": field 'line_hex_digits': " + j.at("line_hex_digits").dump() +
+  if (need_int(j, "line_hex_digits", mp) != lay.digits())
+    throw ConfigError(mp + ": field 'line_hex_digits': " + json_excerpt(j.at("line_hex_digits")) +
                       ", the fields add up to " + std::to_string(lay.digits()));
   if (j.contains("cases") && j.at("cases").is_array()) {
     uint64_t next = 1;
     for (const auto& c : j.at("cases")) {
-      VecCases vc{need<std::string>(c, "kind", mp + ": cases"), need<uint64_t>(c, "first_line", mp + ": cases") - 1,
-                  need<uint64_t>(c, "count", mp + ": cases")};
-      if (vc.first + 1 != next)
-        throw ConfigError(mp + ": field 'cases': kind '" + vc.kind + "' starts at line " +
-                          std::to_string(vc.first + 1) + ", expected " + std::to_string(next));
+      const uint64_t first_line = need_uint(c, "first_line", mp + ": cases");
+      VecCases vc{need_string(c, "kind", mp + ": cases"), first_line - 1, need_uint(c, "count", mp + ": cases")};
+      if (first_line != next)
+        throw ConfigError(mp + ": field 'cases': kind '" + cut(vc.kind, kMaxExcerptChars) + "' starts at line " +
+                          std::to_string(first_line) + ", expected " + std::to_string(next));
+      // Checked: the kinds may not cover more lines than 'count' (no uint64 wrap-around).
+      if (vc.count > m.count - (next - 1))
+        throw ConfigError(mp + ": field 'cases': kind '" + cut(vc.kind, kMaxExcerptChars) + "' count " +
+                          std::to_string(vc.count) + " runs past the manifest's count " + std::to_string(m.count));
       next += vc.count;
       m.cases.push_back(vc);
     }
@@ -441,7 +453,8 @@ VecFile read_vectors(const std::string& hex_path, const Config* expect) {
           char shown[8];
           std::snprintf(shown, sizeof shown, (c >= 0x20 && c < 0x7f) ? "%c" : "\\x%02x", c);
           throw ConfigError(where + ": field '" + f.name + "' (column " + std::to_string(col - pos + 1) +
-                            "): bad hex digit '" + std::string(shown) + "'");
+                            "): bad hex digit '" + std::string(shown) + "'" +
+                            (c >= 'A' && c <= 'F' ? " (uppercase: the format is lowercase hex)" : ""));
         }
         v = (v << kVecBitsPerDigit) | (uint64_t)h;
       }
@@ -468,7 +481,13 @@ uint64_t recheck_vectors(const VecFile& f, std::vector<std::string>* first, size
     const VecRow want = f.row(i);
     r = want;
     for (int o : lay.outputs()) r[(size_t)o] = 0;
-    model->compute(r);
+    try {
+      model->compute(r);
+    } catch (const std::invalid_argument& e) {
+      // Inputs outside the unit's contract (e.g. a div operand without its msb): name the line.
+      throw ConfigError(f.hex_path + ":" + std::to_string(i + 1) + ": input " + vec_hex(lay, want, VecDir::In) +
+                        " is outside the unit's input domain: " + cut(e.what(), kMaxExcerptChars));
+    }
     if (r != want) {
       ++bad;
       if (first && first->size() < max_report)
