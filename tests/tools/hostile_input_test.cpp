@@ -44,7 +44,7 @@ struct Case {
   std::string scene;               // written to <dir>/in.json
   std::string args;                // after the command; {in} and {dir} are replaced
   std::vector<std::string> want;   // pieces the message must contain
-  std::string obj;                 // optional: written to <dir>/m.obj
+  std::string obj = "";            // optional: written to <dir>/m.obj
 };
 
 std::string expand(std::string s, const std::string& dir) {
