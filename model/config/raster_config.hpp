@@ -33,6 +33,22 @@ struct RasterConfig {
   // exponents differ by at most interp_block_bits − significand bits, i.e. w ratios up to
   // 2^16 at the defaults 40 and 24). docs/pipeline.md, stage 7.
   int interp_block_bits = 40;
+  // Fraction bits of the window x, y the depth and varying planes are set up from (issue 8;
+  // docs/pipeline.md, "Attribute positions"). Coverage keeps the snapped subpixel_bits positions.
+  // Equal to subpixel_bits: the planes use the snapped positions and z = RNE(z_c·rcp(w_c)), the
+  // model before issue 8, bit for bit. Larger: x_c/w_c, y_c/w_c and z_c/w_c are divided exactly
+  // and rounded once (x, y to attr_subpixel_bits, z to z_frac_bits).
+  int attr_subpixel_bits = 8;
+  // Signed bits of the triangle-relative attribute coordinates (vertices and candidate pixel
+  // centres relative to vertex 0): a triangle whose extent needs more drops fraction bits below
+  // attr_subpixel_bits. Edge values of the attribute planes take 2·attr_coord_bits + 2 bits, the
+  // 1/w and v/w planes 2·attr_coord_bits + interp_block_bits + 5 (125 at 40, within i128).
+  int attr_coord_bits = 40;
+  // Significand bits of the per-vertex 1/w and v/w of the attribute path (exact quotients rounded
+  // once; the snapped path keeps recip.out_sig_bits and varying_sig_bits). A perspective-correct
+  // varying mixes the three v/w: a result much smaller than the largest vertex term inherits
+  // that term's rounding, so 8 bits beyond float32 keep it below an output ulp.
+  int attr_sig_bits = 32;
 
   int depth_bits() const { return depth_format == DepthFormat::D16 ? 16 : 24; }
 
@@ -46,6 +62,10 @@ struct RasterConfig {
     v.integer("varying_out_sig_bits", varying_out_sig_bits, 8, 32, "significand bits of output varyings");
     v.choice("depth_format", depth_format, {"d16", "d24"}, "depth buffer format (unorm)");
     v.integer("interp_block_bits", interp_block_bits, 16, 62, "width of block-aligned per-triangle 1/w and v/w integers");
+    v.integer("attr_subpixel_bits", attr_subpixel_bits, 0, 40,
+              "fraction bits of window x, y for depth / varying planes (= subpixel_bits: snapped positions)");
+    v.integer("attr_coord_bits", attr_coord_bits, 16, 40, "signed bits of triangle-relative attribute-plane coordinates");
+    v.integer("attr_sig_bits", attr_sig_bits, 8, 40, "significand bits of per-vertex 1/w and v/w on the attribute path");
   }
 };
 
