@@ -4,6 +4,6 @@
 // tb/variants/div/*.json.
 #include "Vfxr_div.h"
 #include "cosim_tests.hpp"
-#include "div_ports.hpp"
+#include "div_ports_gen.hpp"  // generated: fxraster layout --emit-ports
 
-FXR_COSIM_TESTS(Div, DivPorts<Vfxr_div>, "div", "out_sig", 3)
+FXR_COSIM_TESTS(Div, fxr::tb::gen::DivPortsGen<Vfxr_div>, "div", "out_sig", 3)

@@ -6,12 +6,15 @@
 // bit for bit with the expected one, in order: none lost (timeout), none duplicated (an output
 // with nothing in flight), none out of order. On a mismatch the run is replayed with tracing on
 // and an FST of the window around the first mismatch is written. A unit plugs in with a Ports
-// adapter:
+// adapter, generated from the unit's vector layout by `fxraster layout --emit-ports`
+// (build/gen/ports/<unit>_ports_gen.hpp, model/vectors/codegen.hpp):
 //
-//   struct RecipPorts {
-//     using Dut = Vfxr_recip;
-//     static void drive(Dut& d, const fxr::VecRow& r);  // input fields -> input ports
-//     static void sample(Dut& d, fxr::VecRow& r);       // output ports -> output fields
+//   template <class D> struct RecipPortsGen {
+//     using Dut = D;
+//     static std::vector<std::string> fields();          // vector fields, file order
+//     static int latency(const fxr::Config&), ii(...);   // from the unit's cost model
+//     static void drive(Dut& d, const fxr::VecRow& r);   // input fields -> ports <field>_i
+//     static void sample(Dut& d, fxr::VecRow& r);        // ports <field>_o -> output fields
 //   };
 #pragma once
 

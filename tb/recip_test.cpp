@@ -3,9 +3,9 @@
 // outputs and a caught corruption (tb/cosim_tests.hpp). Other parameter sets: tb/variants/recip/.
 #include "Vfxr_recip.h"
 #include "cosim_tests.hpp"
-#include "recip_ports.hpp"
+#include "recip_ports_gen.hpp"  // generated: fxraster layout --emit-ports
 
-using RecipDefault = RecipPorts<Vfxr_recip>;
+using RecipDefault = fxr::tb::gen::RecipPortsGen<Vfxr_recip>;
 
 FXR_COSIM_TESTS(Recip, RecipDefault, "recip", "out_sig", 0)
 

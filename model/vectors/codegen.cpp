@@ -40,7 +40,18 @@ void emit_sv_vector_layout(std::ostream& os, const std::string& unit, const VecL
     os << "  localparam int " << n << "Bits = " << f.width << ";\n";
   }
   os << "  localparam int " << p << "WordBits = " << l.word_bits() << ";\n";
-  os << "  localparam int " << p << "OutWordBits = " << out_word_bits(l) << ";  // outputs: the low bits\n";
+  const int ob = out_word_bits(l);
+  os << "  localparam int " << p << "OutWordBits = " << ob << ";  // outputs: the low bits\n";
+  // Mask of the output part without its padding: (outputs & mask) is 0 in every padding bit even
+  // when a testbench leaves the padding fields undriven (X & 0 = 0).
+  std::string mask((size_t)(ob + 3) / 4, '0');
+  for (int i : l.outputs())
+    for (int b = l[(size_t)i].offset; b < l[(size_t)i].offset + l[(size_t)i].width; ++b) {
+      char& c = mask[mask.size() - 1 - (size_t)(b / 4)];
+      const int v = (c <= '9' ? c - '0' : c - 'a' + 10) | (1 << (b % 4));
+      c = (char)(v < 10 ? '0' + v : 'a' + v - 10);
+    }
+  os << "  localparam logic [" << ob - 1 << ":0] " << p << "OutMask = " << ob << "'h" << mask << ";\n";
   os << "  typedef struct packed {\n";
   emit_struct_fields(os, l, VecDir::In, true);
   os << "  } " << unit << "_vec_t;\n";
@@ -70,7 +81,11 @@ void emit_verilator_ports(std::ostream& os, const std::string& unit, const VecLa
      << "  // The vector fields in file order: inputs (ports <name>_i), then outputs (<name>_o).\n"
         "  static std::vector<std::string> fields() {\n    return {";
   for (size_t i = 0; i < l.size(); ++i) os << (i ? ", " : "") << '"' << l[i].name << '"';
-  os << "};\n  }\n  static void drive(Dut& d, const fxr::VecRow& r) {\n";
+  os << "};\n  }\n"
+        "  // Timing from the unit's cost model (the formulas the RTL is built from).\n"
+        "  static int latency(const fxr::Config& c) { return fxr::vector_unit(\"" << unit << "\").cost(c).latency; }\n"
+        "  static int ii(const fxr::Config& c) { return fxr::vector_unit(\"" << unit << "\").cost(c).ii; }\n"
+        "  static void drive(Dut& d, const fxr::VecRow& r) {\n";
   for (int i : l.inputs()) os << "    d." << l[(size_t)i].name << "_i = r[" << i << "];\n";
   os << "  }\n  static void sample(Dut& d, fxr::VecRow& r) {\n";
   for (int i : l.outputs()) os << "    r[" << i << "] = d." << l[(size_t)i].name << "_o;\n";

@@ -717,9 +717,11 @@ class RecipVectors : public VectorModel {
 std::vector<VectorUnitInfo> builtin_vector_units() {
   return {
       {"recip", "fxr_recip", "reciprocal unit 1/w (fxr::recip)",
-       [](const Config& c) { return std::make_unique<RecipVectors>(c); }},
+       [](const Config& c) { return std::make_unique<RecipVectors>(c); },
+       [](const Config& c) { return recip_cost(c.recip); }},
       {"div", "fxr_div", "per-pixel significand divider (div_sig)",
-       [](const Config& c) { return std::make_unique<DivVectors>(c); }},
+       [](const Config& c) { return std::make_unique<DivVectors>(c); },
+       [](const Config& c) { return div_cost(c.div); }},
   };
 }
 

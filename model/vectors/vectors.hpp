@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/config/config.hpp"
+#include "model/unit/stage.hpp"
 
 namespace fxr {
 
@@ -117,6 +118,9 @@ struct VectorUnitInfo {
   std::string rtl_module;  // rtl/<rtl_module>.sv
   std::string doc;
   std::function<std::unique_ptr<VectorModel>(const Config&)> make;
+  // The unit's cost at a configuration (latency and initiation interval drive the testbenches'
+  // timing checks); empty for units without hardware.
+  std::function<StageCost(const Config&)> cost;
 };
 
 // Every unit that has vectors, in a fixed order.
