@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 #include <tuple>
 
 #include "frontend/texture.hpp"
@@ -35,6 +36,8 @@ void write_fragment_dump(const std::string& dir, const Scene& sc, const FrameOut
                 std::to_string(fr.var[k].exp);
       f << line << "\n";
     }
+    f.close();
+    if (!f) throw std::runtime_error(dir + "/fragments.csv: cannot write");  // checked: never a silent 0 exit
   }
   json cols = json::array();
   cols.push_back({{"name", "x"}, {"type", "int32"}, {"meaning", "pixel column (window x), 0 at the left"}});
@@ -54,7 +57,10 @@ void write_fragment_dump(const std::string& dir, const Scene& sc, const FrameOut
                {"comment_prefix", "#"}, {"header_row", true}, {"columns", cols},
                {"varying_meaning", {{"u", sc.u_varying}, {"v", sc.v_varying}}},
                {"config", config_to_json(sc.config)}, {"rows", fo.fragments.size()}};
-  std::ofstream(dir + "/fragments.json") << side.dump(2) << "\n";
+  std::ofstream fj(dir + "/fragments.json");
+  fj << side.dump(2) << "\n";
+  fj.close();
+  if (!fj) throw std::runtime_error(dir + "/fragments.json: cannot write");
 }
 
 json stats_json(RasterStats s) {

@@ -4,12 +4,23 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "analysis/render_images.hpp"
 
 namespace fxr {
 
 using json = nlohmann::json;
+
+namespace {
+// Every stream is checked: a file that cannot be written fails the command (never exit 0).
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  f.close();
+  if (!f) throw std::runtime_error(path + ": cannot write");
+}
+}  // namespace
 
 RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
   std::filesystem::create_directories(o.out);
@@ -71,7 +82,7 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
                 {"interp", sc.state.interp == InterpMode::Affine ? "affine" : "perspective"},
                 {"triangles", sc.tris.size()}, {"model", stats_json(s)}, {"reference", ref_stats_json(rf.stats)},
                 {"all_primitives_accounted", accounted == s.prims_in && s.prims_in == sc.tris.size()}};
-  std::ofstream(o.out + "/stats.json") << stats.dump(2) << "\n";
+  write_text(o.out + "/stats.json", stats.dump(2) + "\n");
 
   const int nv = sc.state.num_varyings;
   json rep = {{"scene", sc.name}, {"source", sc.source}, {"notes", sc.notes}, {"config", config_to_json(sc.config)},
@@ -93,7 +104,7 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
   rep["image_pixels_differing_from_reference"] = pix_diff;
   rep["other_interp_mode"] = other_mode;
   rep["depth_image_range"] = dlo <= dhi ? json{dlo, dhi} : json(nullptr);
-  std::ofstream(o.out + "/report.json") << rep.dump(2) << "\n";
+  write_text(o.out + "/report.json", rep.dump(2) + "\n");
 
   // report.md
   std::ofstream md(o.out + "/report.md");
@@ -184,6 +195,7 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
        << ", mean " << fmt_num(a["mean"].get<double>()) << " (" << other_mode["fragments"].get<uint64_t>() << " fragments).\n";
   }
   md.close();
+  if (!md) throw std::runtime_error(o.out + "/report.md: cannot write");
 
   RenderSummary r;
   r.fragments = fo.fragments.size();

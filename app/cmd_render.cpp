@@ -2,8 +2,12 @@
 // reference; writes the shaded image, the depth image, the fragment dump, statistics and an
 // error report (report.md / report.json). Deterministic: no timings in the files.
 // The work is analysis/render_report.hpp's; this file parses options and prints a summary.
+#include <climits>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+
+#include <unistd.h>
 
 #include "analysis/render_report.hpp"
 #include "command.hpp"
@@ -21,9 +25,90 @@ struct Opts {
   int width = 0, height = 0, spot_checks = 2000;
 };
 
+namespace fs = std::filesystem;
+
+// ---- the output folder ---------------------------------------------------------------------------
+// A run writes into a temporary folder beside --out and renames it to --out only when every file
+// is written; a failed run also removes the previous run's files from --out, so no output folder
+// is ever mistaken for this run's (docs/reports.md, "Render output"). An existing --out is
+// replaced only when it holds nothing but files `render` writes: a mistyped --out never deletes
+// a user's files.
+
+// Every file render_with_report writes (analysis/render_report.cpp).
+const char* const kRenderFiles[] = {"image.png",         "reference.png",  "depth.png",      "image_affine.png",
+                                    "image_perspective.png", "side_by_side.png", "error_heatmap.png", "fragments.csv",
+                                    "fragments.json",    "stats.json",     "report.md",      "report.json"};
+
+bool is_render_file(const std::string& name) {
+  for (const char* f : kRenderFiles)
+    if (name == f) return true;
+  return false;
+}
+
+fs::path out_path(const std::string& out) {
+  fs::path p = fs::path(out).lexically_normal();
+  if (!p.has_filename()) p = p.parent_path();  // "dir/" → "dir"
+  return p;
+}
+
+// Throws unless `out` is absent, or a folder holding only render's files.
+void check_replaceable(const fs::path& out) {
+  std::error_code ec;
+  if (!fs::exists(out, ec)) return;
+  if (!fs::is_directory(out, ec)) throw fxr::ConfigError(out.string() + ": --out exists and is not a folder");
+  for (const auto& e : fs::directory_iterator(out, ec))
+    if (!is_render_file(e.path().filename().string()))
+      throw fxr::ConfigError(out.string() + ": refusing to replace this folder: it holds '" +
+                             fxr::cut(e.path().filename().string(), fxr::kMaxExcerptChars) +
+                             "', which render does not write (give a new or an empty --out)");
+  if (ec) throw fxr::ConfigError(out.string() + ": cannot list the folder: " + ec.message());
+}
+
+// Removes a previous run's files from `out` (and the folder when that empties it).
+void remove_previous(const fs::path& out) {
+  std::error_code ec;
+  if (!fs::is_directory(out, ec)) return;
+  for (const char* f : kRenderFiles) fs::remove(out / f, ec);
+  fs::remove(out, ec);  // only succeeds when empty
+}
+
+// PNGs are written by stb_image_write, whose sizes are C ints: the largest image (side by side:
+// 2W + 8 gap pixels wide, RGBA) must stay below INT_MAX bytes. Checked before any work.
+constexpr int64_t kRgbaBytes = 4;
+constexpr int64_t kSideBySideGap = 8;
+void check_image_sizes(const fxr::Scene& sc, bool no_affine_image, const std::string& where) {
+  const int64_t w = sc.state.viewport_w, h = sc.state.viewport_h;
+  const int64_t widest = no_affine_image ? w : 2 * w + kSideBySideGap;
+  if (widest * h * kRgbaBytes > INT_MAX)
+    throw fxr::ConfigError(where + ": viewport " + std::to_string(w) + "x" + std::to_string(h) + ": the " +
+                           (no_affine_image ? "image" : "side-by-side image") + " (" + std::to_string(widest) + "x" +
+                           std::to_string(h) + " RGBA) exceeds the PNG writer's 2 GiB limit" +
+                           (no_affine_image ? "" : "; --no-affine-image drops it") + " (or use --width / --height)");
+}
+
 // ---- the command --------------------------------------------------------------------------------
 
+int run_into(const Opts& o, const fs::path& out);
+
 int run(const Opts& o) {
+  const fs::path out = out_path(o.out);
+  check_replaceable(out);  // before anything: a foreign folder is left untouched
+  const fs::path tmp = out.parent_path() / (out.filename().string() + ".partial-" + std::to_string(getpid()));
+  std::error_code ec;
+  fs::remove_all(tmp, ec);
+  try {
+    const int rc = run_into(o, tmp);
+    remove_previous(out);
+    fs::rename(tmp, out);  // same parent folder: one rename
+    return rc;
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    remove_previous(out);  // the previous run's files must not pass for this run's
+    throw;
+  }
+}
+
+int run_into(const Opts& o, const fs::path& tmp) {
   if (o.scene.empty() == !o.use_default)
     throw std::runtime_error("give exactly one of SCENE or --default");
   fxr::SceneOptions so;
@@ -40,10 +125,11 @@ int run(const Opts& o) {
     sc.config = fxr::config_from_json(merged, o.config);
   }
   if (o.affine) sc.state.interp = fxr::InterpMode::Affine;
+  check_image_sizes(sc, o.no_affine_image, o.use_default ? "<default scene>" : o.scene);
   for (const auto& n : sc.notes) std::cerr << "fxraster render: note: " << n << "\n";
 
   fxr::RenderOptions ro;
-  ro.out = o.out;
+  ro.out = tmp.string();
   ro.affine = o.affine;
   ro.no_affine_image = o.no_affine_image;
   ro.spot_checks = o.spot_checks;

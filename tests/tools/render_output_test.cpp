@@ -1,0 +1,67 @@
+// `fxraster render` never leaves stale output (issue 9): a run writes into a temporary folder and
+// renames it at the end; a failed run removes the previous run's files; a folder holding other
+// files is never replaced; image sizes beyond the PNG writer are refused before any work.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+
+#include "tests/tools/cli.hpp"
+
+namespace fxr::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kSmall = "render --default --no-bunny --quiet --width 24 --height 16 --spot-checks 10 ";
+
+TEST(RenderOutput, FailedRunLeavesNoPreviousRunsFiles) {
+  const std::string d = scratch();
+  ASSERT_EQ(run_cli(d, kSmall + "--out '" + d + "/out'").exit, 0);
+  ASSERT_TRUE(fs::exists(d + "/out/stats.json"));
+  write_file(d + "/bad.json", R"({"version": 1, "viewport": {"width": 8, "height": 1e400}, "objects": []})");
+  const CliResult r = run_cli(d, "render '" + d + "/bad.json' --quiet --out '" + d + "/out'");
+  EXPECT_EQ(r.exit, 2) << r.err;
+  EXPECT_FALSE(fs::exists(d + "/out/stats.json")) << "the previous run's stats.json is still there";
+  EXPECT_FALSE(fs::exists(d + "/out"));
+  for (const auto& e : fs::directory_iterator(d))  // no temporary folder left either
+    EXPECT_EQ(e.path().filename().string().find(".partial"), std::string::npos) << e.path();
+}
+
+TEST(RenderOutput, SuccessfulRunReplacesThePreviousOne) {
+  const std::string d = scratch();
+  ASSERT_EQ(run_cli(d, kSmall + "--out '" + d + "/out'").exit, 0);
+  ASSERT_TRUE(fs::exists(d + "/out/image_affine.png"));
+  // Second run without the affine image: its files only, none of the first run's.
+  ASSERT_EQ(run_cli(d, kSmall + "--no-affine-image --out '" + d + "/out/'").exit, 0);
+  EXPECT_TRUE(fs::exists(d + "/out/stats.json"));
+  EXPECT_FALSE(fs::exists(d + "/out/image_affine.png")) << "a file of the previous run survived";
+}
+
+TEST(RenderOutput, FolderWithOtherFilesIsNeverReplaced) {
+  const std::string d = scratch();
+  write_file(d + "/mine/notes.txt", "keep me");
+  const CliResult r = run_cli(d, kSmall + "--out '" + d + "/mine'");
+  EXPECT_EQ(r.exit, 2);
+  EXPECT_NE(r.err.find("notes.txt"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(d + "/mine/notes.txt"), "keep me");
+  write_file(d + "/afile", "x");
+  EXPECT_EQ(run_cli(d, kSmall + "--out '" + d + "/afile'").exit, 2);
+  EXPECT_EQ(read_file(d + "/afile"), "x");
+}
+
+TEST(RenderOutput, OversizedImagesAreRefusedBeforeAnyWork) {
+  const std::string d = scratch();
+  const auto t0 = std::chrono::steady_clock::now();
+  const CliResult r = run_cli(d, "render --default --quiet --width 16384 --height 16384 --out '" + d + "/out'");
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(r.exit, 2) << r.err;
+  EXPECT_NE(r.err.find("16384x16384"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--no-affine-image"), std::string::npos) << r.err;
+  EXPECT_LT(s, 20.0) << "refused only after rendering";  // the render itself took 113 s
+  EXPECT_FALSE(fs::exists(d + "/out"));
+}
+
+}  // namespace
+}  // namespace fxr::test
