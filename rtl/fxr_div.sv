@@ -20,10 +20,10 @@
 //
 // Latency (cycles from the input transfer to out_valid_o, = fxr::div_cost().latency):
 //   radix2: ceil((QuotBits - 1) / BitsPerStage) + 2 (25 at the default configuration);
-//   II 1 pipelined (Schedule 0), ceil((QuotBits - 1) / BitsPerStage) + 1 iterative (Schedule 1).
+//   II 1 pipelined (DivSchedulePipelined), ceil((QuotBits - 1) / BitsPerStage) + 1 iterative.
 //   recip_mul: 2 * NrSteps + 4 (8 at NrSteps 2), II 1 (always pipelined).
 module fxr_div #(
-  parameter int Algorithm      = fxr_config_pkg::DivAlgorithm,  // 0 recip_mul, 1 radix2
+  parameter int Algorithm      = fxr_config_pkg::DivAlgorithm,  // fxr_config_pkg::div_algorithm_e
   parameter int NumBits        = fxr_config_pkg::DivNumBits,
   parameter int DenBits        = fxr_config_pkg::DivDenBits,
   parameter int QuotBits       = fxr_config_pkg::DivQuotBits,
@@ -32,7 +32,7 @@ module fxr_div #(
   parameter int NrSteps        = fxr_config_pkg::DivNrSteps,
   parameter int NrFracBits     = fxr_config_pkg::DivNrFracBits,
   parameter int BitsPerStage   = fxr_config_pkg::DivBitsPerStage,
-  parameter int Schedule       = fxr_config_pkg::DivSchedule     // 0 pipelined, 1 iterative
+  parameter int Schedule       = fxr_config_pkg::DivSchedule     // fxr_config_pkg::div_schedule_e
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,
@@ -46,11 +46,7 @@ module fxr_div #(
   output logic [1:0]          out_exp_adj_o,
   output logic                out_dbz_o
 );
-  // Choice indices of DivConfig::algorithm (the order of its visit() names).
-  localparam int AlgRecipMul = 0;
-  localparam int AlgRadix2   = 1;
-
-  if (Algorithm == AlgRadix2) begin : gen_radix2
+  if (Algorithm == fxr_config_pkg::DivAlgorithmRadix2) begin : gen_radix2
     fxr_div_radix2 #(
       .NumBits     (NumBits),
       .DenBits     (DenBits),
@@ -97,6 +93,6 @@ module fxr_div #(
   // Parameters of the algorithm not instantiated are unused by design.
   /* verilator lint_off UNUSEDPARAM */
   localparam int UnusedParams = SeedIndexBits + SeedBits + NrSteps + NrFracBits + BitsPerStage +
-                                Schedule + AlgRecipMul;
+                                Schedule;
   /* verilator lint_on UNUSEDPARAM */
 endmodule

@@ -1,9 +1,9 @@
 // fxr_div_radix2: radix-2 non-restoring significand divider, pipelined or iterative.
 // Implements fxr::div_sig_radix2_steps (model/arith/div.cpp) bit for bit; ports as fxr_div.
 //
-// Schedule 0 (pipelined): pre -> Stages recurrence registers (BitsPerStage steps each) -> post.
+// DivSchedulePipelined: pre -> Stages recurrence registers (BitsPerStage steps each) -> post.
 //   One result per clock; the whole pipeline stalls while out_valid_o && !out_ready_i.
-// Schedule 1 (iterative): pre loads one working register, which runs Stages cycles of
+// DivScheduleIterative: pre loads one working register, which runs Stages cycles of
 //   BitsPerStage steps; post writes the output register. II = Stages + 1.
 // Latency (both) = Stages + 2, Stages = ceil((QuotBits - 1) / BitsPerStage) = fxr::div_cost.
 module fxr_div_radix2 #(
@@ -11,7 +11,7 @@ module fxr_div_radix2 #(
   parameter int DenBits      = 32,
   parameter int QuotBits     = 24,
   parameter int BitsPerStage = 1,
-  parameter int Schedule     = 0
+  parameter int Schedule     = fxr_config_pkg::DivSchedulePipelined
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,
@@ -105,7 +105,7 @@ module fxr_div_radix2 #(
     end
   end
 
-  if (Schedule == 0) begin : gen_pipelined
+  if (Schedule == fxr_config_pkg::DivSchedulePipelined) begin : gen_pipelined
     // Register stage s holds an operand after s * BitsPerStage recurrence steps (s = 0: pre).
     // Global stall: every register advances when the output register can take a result.
     // Flattened per-stage vectors (Yosys 0.23 reads neither arrays of structs nor

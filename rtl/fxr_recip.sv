@@ -43,7 +43,7 @@ module fxr_recip #(
   parameter int SeedFracBits  = fxr_config_pkg::RecipSeedFracBits,
   parameter int NrSteps       = fxr_config_pkg::RecipNrSteps,
   parameter int NrFracBits    = fxr_config_pkg::RecipNrFracBits,
-  parameter int Correction    = fxr_config_pkg::RecipCorrection  // 0 none, 1 remainder
+  parameter int Correction    = fxr_config_pkg::RecipCorrection  // fxr_config_pkg::recip_correction_e
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,
@@ -66,7 +66,9 @@ module fxr_recip #(
   localparam int Drop = F - OutSigBits;     // bits below the output lsb at the rounding (>= 1)
   localparam int KW = OutSigBits + 1;       // K rounded half up, units of 2^-OutSigBits: up to 2^OutSigBits
   localparam int StRound = 1 + 2 * NrSteps; // stage index of the rounding register
-  localparam int Latency = StRound + 1 + Correction;
+  // The remainder correction adds one register stage (the back-multiply midpoint test).
+  localparam bit Correct = Correction == fxr_config_pkg::RecipCorrectionRemainder;
+  localparam int Latency = StRound + 1 + (Correct ? 1 : 0);
   localparam int Last = Latency - 1;        // the output register stage
 
   // ---- handshake: one global enable, the pipeline holds while the output is stalled --------
@@ -164,7 +166,7 @@ module fxr_recip #(
   logic [OutSigBits-1:0] sig_fin;
   logic [1:0]            exp_adj_fin;  // 2'b11: below 1 (exp_adj -1); 2'b00: exactly 1.0
   localparam logic [OutSigBits-1:0] KLo = {1'b1, {(OutSigBits-1){1'b0}}};
-  if (Correction != 0) begin : gen_correct
+  if (Correct) begin : gen_correct
     // K clamped to [2^(o-1), 2^o - 1] and registered (K = 2^o means RN(1/x) = 1.0, which the
     // midpoint test below restores: docs/arith.md).
     logic [OutSigBits-1:0] k_clamp;

@@ -38,15 +38,37 @@ void JsonReader::reject_unknown() const {
   }
 }
 
+// "RecipMul" → "recip_mul" (for the SystemVerilog enum type name).
+static std::string snake_case(const std::string& camel) {
+  std::string r;
+  for (char c : camel) {
+    if (c >= 'A' && c <= 'Z') {
+      if (!r.empty()) r += '_';
+      r += (char)(c - 'A' + 'a');
+    } else {
+      r += c;
+    }
+  }
+  return r;
+}
+
 void emit_sv_params(std::ostream& os, const std::string& prefix, const std::vector<ParamRow>& rows) {
   for (const auto& r : rows) {
-    os << "  localparam int " << prefix << camel_case(r.name) << " = " << r.value << ";  // " << r.doc;
-    if (!r.choices.empty()) {
-      os << " (";
-      for (size_t i = 0; i < r.choices.size(); ++i) os << (i ? ", " : "") << i << "=" << r.choices[i];
-      os << ")";
+    const std::string name = prefix + camel_case(r.name);
+    if (r.choices.empty()) {
+      os << "  localparam int " << name << " = " << r.value << ";  // " << r.doc << "\n";
+      continue;
     }
-    os << "\n";
+    // A choice: its names as a typedef enum (<Prefix><Param><Choice>), the parameter as an int
+    // holding one of them (Icarus 11 cannot have enum-typed parameters; the RTL compares with
+    // the enumerators, never with bare integers).
+    const std::string type = snake_case(name) + "_e";
+    os << "  typedef enum int {";
+    for (size_t i = 0; i < r.choices.size(); ++i)
+      os << (i ? ", " : " ") << name << camel_case(r.choices[i]) << " = " << i;
+    os << " } " << type << ";\n";
+    os << "  localparam int " << name << " = " << name << camel_case(r.choices[(size_t)r.value]) << ";  // "
+       << r.doc << " (" << type << ")\n";
   }
 }
 
