@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -43,6 +44,7 @@ struct Opts {
   bool synth = false;
   bool no_timing = false;
   bool no_plots = false;
+  bool list = false;
 };
 
 // Random divider operand pairs per configuration (on top of the directed cases).
@@ -194,6 +196,47 @@ SweepTable sweep_div(const Opts& o, uint64_t count) {
       "model speed: ns per div_sig call on this machine (not reproducible)");
 }
 
+// The units a sweep covers: adding one is adding an entry here (its configurations, measurement
+// and cost come from analysis/measure.hpp and the unit's cost()).
+struct SweepUnitDef {
+  std::string name;   // CLI name and default folder out/sweep/<name>
+  std::string title;  // report title
+  std::function<SweepTable(const Opts&)> sweep;
+  std::function<std::string(const Opts&, size_t rows)> intro;  // what was measured, how
+};
+
+uint64_t div_count_of(const Opts& o) { return o.count ? o.count : (o.quick ? kDivCountQuick : kDivCountFull); }
+
+const std::vector<SweepUnitDef>& sweep_units() {
+  static const std::vector<SweepUnitDef> units = {
+      {"recip", "Reciprocal unit: error against cost", [](const Opts& o) { return sweep_recip(o); },
+       [](const Opts&, size_t n) {
+         return "Reciprocal unit (stage 3, `fxr::recip`), " + std::to_string(n) +
+                " configurations of `recip_sweep_configs()`. Error: exhaustive over every input "
+                "significand, against the exact reciprocal (integer arithmetic), in ulps of the "
+                "result. Cost: `recip_cost()` (the RTL's latency formula, table and multiplier "
+                "sizes).";
+       }},
+      {"div", "Divider: error against cost", [](const Opts& o) { return sweep_div(o, div_count_of(o)); },
+       [](const Opts& o, size_t n) {
+         return "Per-pixel divider (stage 9, `fxr::div_sig`), " + std::to_string(n) +
+                " configurations of `div_sweep_configs()`. Error: directed cases plus " +
+                std::to_string(div_count_of(o)) + " random operand pairs per configuration (mt19937_64, seed " +
+                std::to_string(o.seed) + "), against the exact quotient, in ulps of the result. Cost: `div_cost()`.";
+       }},
+  };
+  return units;
+}
+
+const SweepUnitDef& sweep_unit_def(const std::string& name) {
+  std::string known;
+  for (const auto& u : sweep_units()) {
+    if (u.name == name) return u;
+    known += (known.empty() ? "" : ", ") + u.name;
+  }
+  throw fxr::ConfigError("sweep: unknown unit '" + name + "' (known: " + known + ")");
+}
+
 // --synth: scripts/synth_cost.py synthesises every configuration (cached by id in
 // OUT/synth_cache) and writes OUT/synth.csv; its figures join the table by id.
 void add_synthesis(SweepTable& t, const std::string& out) {
@@ -253,13 +296,13 @@ void add_synthesis(SweepTable& t, const std::string& out) {
 }
 
 int run(const Opts& o) {
-  const uint64_t div_count = o.count ? o.count : (o.quick ? kDivCountQuick : kDivCountFull);
+  const SweepUnitDef& def = sweep_unit_def(o.unit);
   const std::string out = o.out.empty() ? "out/sweep/" + o.unit : o.out;
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw fxr::ConfigError(out + ": cannot create the folder: " + ec.message());
 
-  SweepTable t = o.unit == "recip" ? sweep_recip(o) : sweep_div(o, div_count);
+  SweepTable t = def.sweep(o);
   std::vector<FrontSpec> fronts = {{"latency", false}, {"table_bits", false}};
   if (o.synth) {
     add_synthesis(t, out);
@@ -290,18 +333,7 @@ int run(const Opts& o) {
   }
 
   std::ostringstream intro;
-  if (o.unit == "recip") {
-    intro << "Reciprocal unit (stage 3, `fxr::recip`), " << t.rows.size()
-          << " configurations of `recip_sweep_configs()`. Error: exhaustive over every input "
-             "significand, against the exact reciprocal (integer arithmetic), in ulps of the "
-             "result. Cost: `recip_cost()` (the RTL's latency formula, table and multiplier "
-             "sizes).";
-  } else {
-    intro << "Per-pixel divider (stage 9, `fxr::div_sig`), " << t.rows.size()
-          << " configurations of `div_sweep_configs()`. Error: directed cases plus " << div_count
-          << " random operand pairs per configuration (mt19937_64, seed " << o.seed
-          << "), against the exact quotient, in ulps of the result. Cost: `div_cost()`.";
-  }
+  intro << def.intro(o, t.rows.size());
   if (o.synth)
     intro << " Synthesis: Yosys generic `synth; abc -lut 4` (LUT4s, depth by `ltp -noff`) and "
              "`synth_ice40` + `nextpnr-ice40 --hx8k --package ct256 --freq 100` (Fmax), per "
@@ -309,9 +341,7 @@ int run(const Opts& o) {
   intro << " Pareto fronts are against `" << error_col << "`. Data: `sweep.csv`. How to read "
         << "this report: docs/reports.md.";
   if (!plot_note.empty()) intro << "\n\n**" << plot_note << "**";
-  const std::string title = o.unit == "recip" ? "Reciprocal unit: error against cost"
-                                              : "Divider: error against cost";
-  fxr::app::write_markdown(t, title, intro.str(), error_col, fronts, images, out + "/report.md");
+  fxr::app::write_markdown(t, def.title, intro.str(), error_col, fronts, images, out + "/report.md");
   std::cout << "sweep " << o.unit << ": " << t.rows.size() << " configurations; wrote " << csv << ", "
             << out << "/report.md" << (images.empty() ? "" : " and plots") << "\n";
   return 0;
@@ -319,7 +349,11 @@ int run(const Opts& o) {
 
 fxr::app::Runner setup(CLI::App& sub) {
   auto o = std::make_shared<Opts>();
-  sub.add_option("unit", o->unit, "unit to sweep: recip or div")->required()->check(CLI::IsMember({"recip", "div"}));
+  std::string names;
+  for (const auto& u : sweep_units()) names += (names.empty() ? "" : ", ") + u.name;
+  auto* unit = sub.add_option("unit", o->unit, "unit to sweep: " + names);
+  auto* list = sub.add_flag("--list", o->list, "print the units a sweep covers, one per line, and exit");
+  unit->excludes(list);
   sub.add_option("--out", o->out, "report folder (default: out/sweep/UNIT)");
   sub.add_flag("--quick", o->quick, "fewer random divider pairs (2e4 instead of 1e6 per configuration)");
   sub.add_option("--count", o->count, "div: random operand pairs per configuration (overrides --quick)")
@@ -330,7 +364,14 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_flag("--no-timing", o->no_timing, "leave out the model-speed column (byte-reproducible CSV)");
   sub.add_flag("--no-plots", o->no_plots, "do not call scripts/plot_sweep.py");
   sub.footer("Writes OUT/sweep.csv, OUT/report.md and OUT/error_vs_<cost>.png; docs/reports.md explains them.");
-  return [o]() { return run(*o); };
+  return [o]() {
+    if (o->list) {
+      for (const auto& u : sweep_units()) std::cout << u.name << "\n";
+      return 0;
+    }
+    if (o->unit.empty()) throw fxr::ConfigError("sweep: missing the unit to sweep (one of `fxraster sweep --list`)");
+    return run(*o);
+  };
 }
 
 fxr::app::Registrar reg("sweep", "error against cost over a unit's configuration sweep (CSV, Markdown, plots)",

@@ -17,6 +17,7 @@ struct Opts {
   std::string out = ".";
   bool exhaustive = false;
   bool no_recompute = false;
+  bool list = false;
 };
 
 int run_check(const Opts& o, const std::string& path) {
@@ -38,10 +39,11 @@ fxr::app::Runner setup(CLI::App& sub) {
   auto o = std::make_shared<Opts>();
   std::string units;
   for (const auto& u : fxr::vector_units()) units += (units.empty() ? "" : ", ") + u.name;
-  sub.add_option("unit", o->args,
-                 "UNIT (" + units + ") to generate, or `check FILE` to validate a vector file")
-      ->required()
-      ->expected(1, 2);
+  auto* unit = sub.add_option("unit", o->args,
+                               "UNIT (" + units + ") to generate, or `check FILE` to validate a vector file")
+                   ->expected(1, 2);
+  auto* list = sub.add_flag("--list", o->list, "print the units that have vectors, one per line, and exit");
+  unit->excludes(list);
   sub.add_option("--config", o->config,
                  "configuration JSON (default: built-in defaults); with check: the manifest must match it");
   sub.add_option("--seed", o->seed, "seed of the random cases (mt19937_64)");
@@ -53,6 +55,11 @@ fxr::app::Runner setup(CLI::App& sub) {
       "Directed corner cases come first, then --count random cases or the --exhaustive sweep.\n"
       "Every line is one hex word ($readmemh); the manifest names the fields (docs/vectors.md).");
   return [o]() {
+    if (o->list) {
+      for (const auto& u : fxr::vector_units()) std::cout << u.name << "\n";
+      return 0;
+    }
+    if (o->args.empty()) throw fxr::ConfigError("vectors: missing the UNIT (one of `fxraster vectors --list`) or `check FILE`");
     if (o->args[0] == "check") {
       if (o->args.size() != 2) throw fxr::ConfigError("vectors check: expected one FILE (the .hex)");
       return run_check(*o, o->args[1]);

@@ -71,6 +71,10 @@ def main():
     check("## Pareto front" in md and "(default)" in md and "error_vs_latency.png" in md,
           "report.md has the default row, the Pareto fronts and the plots")
 
+    # The registry lists the unit (the main job iterates over `sweep --list`).
+    p = subprocess.run([fxr, "sweep", "--list"], capture_output=True, text=True)
+    check(p.returncode == 0 and unit in p.stdout.split(), "sweep --list names %s: %r" % (unit, p.stdout))
+
     # Bad arguments: clear message, non-zero exit, nothing written.
     for args, needle in ((["sweep", "nosuchunit"], "nosuchunit"),
                          (["sweep"], "unit"),
