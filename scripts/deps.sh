@@ -5,7 +5,8 @@ set -euo pipefail
 PKGS=(cmake ninja-build g++ pkg-config verilator libsystemc-dev libglm-dev libgtest-dev libgmock-dev
       libbenchmark-dev yosys nextpnr-ice40 fpga-icestorm iverilog python3-matplotlib python3-numpy
       libstb-dev libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libgmp-dev libosmesa6-dev
-      glmark2-data zlib1g-dev)
+      glmark2-data zlib1g-dev
+      clang-14 libclang-rt-14-dev)  # scripts/sanitize.sh: ASan + UBSan and libFuzzer (docs/testing.md)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -212,7 +212,7 @@ inline int64_t mac(int64_t a, int fa, int64_t b, int fb, int64_t c, int fc, cons
       (c_aligned >> align) == c && !__builtin_mul_overflow(a, b, &p) &&
       !__builtin_add_overflow(p, c_aligned, &sum))
     return detail::convert_fast(sum, shift, dst, overflowed);
-  const i128 acc = mul_wide(a, b) + ((i128)c << align);
+  const i128 acc = mul_wide(a, b) + (i128)c * ((i128)1 << align);  // c may be < 0: no <<
   return convert(acc, fp, dst, overflowed);
 }
 

@@ -15,8 +15,8 @@ Plane make_plane(const TriSetup& t, const int64_t q[3]) {
   Plane p;
   for (int k = 0; k < 3; ++k) {
     const EdgeEq& e = t.e[k];
-    p.dx += ((i128)e.a * q[k]) << t.g;
-    p.dy += ((i128)e.b * q[k]) << t.g;
+    p.dx += (i128)e.a * q[k] * ((i128)1 << t.g);  // signed: a multiply, not a negative <<
+    p.dy += (i128)e.b * q[k] * ((i128)1 << t.g);
     p.c += (i128)(e.a * h + e.b * h + e.c) * q[k];
   }
   return p;

@@ -66,7 +66,7 @@ struct EdgeEq {
 inline int64_t edge_eval(const EdgeEq& e, int64_t X, int64_t Y) { return e.a * X + e.b * Y + e.c; }
 
 // The sample grid coordinate of pixel centre i: i·2^g + 2^(g−1) (exact).
-inline int64_t pixel_centre(int i, int g) { return ((int64_t)i << g) + ((int64_t)1 << (g - 1)); }
+inline int64_t pixel_centre(int i, int g) { return (int64_t)i * ((int64_t)1 << g) + ((int64_t)1 << (g - 1)); }  // i may be < 0
 
 // Setup of one triangle.
 struct TriSetup {

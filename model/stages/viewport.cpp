@@ -40,7 +40,7 @@ i128 round_scaled_sum(i128 m, int e, i128 c, int sh, bool* range) {
       *range = true;
       return 0;
     }
-    return shift_round((m << e) + c, sh, Round::HalfEven);
+    return shift_round(m * ((i128)1 << e) + c, sh, Round::HalfEven);  // m may be < 0: no <<
   }
   const int k = -e;
   i128 q;
@@ -51,12 +51,12 @@ i128 round_scaled_sum(i128 m, int e, i128 c, int sh, bool* range) {
     s = true;
   } else {
     q = m >> k;                                   // floor
-    const u128 r = (u128)(m - (q << k));          // [0, 2^k)
+    const u128 r = (u128)(m - q * ((i128)1 << k));  // [0, 2^k); q may be < 0: no <<
     g = (r >> (k - 1)) & 1;                       // the ½ bit
     s = low_bits(r, k - 1) != 0;                  // anything below it
   }
   // X/4 = q + c + (g/2 + s/4) rounds like the exact q + c + r/2^k at any step ≥ 1.
-  const i128 x = ((q + c) << 2) | ((i128)g << 1) | (i128)s;
+  const i128 x = (q + c) * 4 + ((i128)g << 1) + (i128)s;  // (q + c)·4 | g·2 | s without a negative <<
   return shift_round(x, sh + 2, Round::HalfEven);
 }
 
@@ -65,7 +65,7 @@ int64_t snap_window(const FxProd& n0, int64_t size, int64_t origin, const Raster
   const int s = rc.subpixel_bits;
   // 2·code = n·size·2^s + (size + 2·origin)·2^s, then one RNE halving.
   const i128 m = (i128)(n.sig * (u128)size);      // < 2^(100 + 21)
-  const i128 c = (i128)(size + 2 * origin) << s;
+  const i128 c = (i128)(size + 2 * origin) * ((i128)1 << s);  // origin may be < 0: no <<
   bool r = false;
   const i128 code = round_scaled_sum(n.neg ? -m : m, n.exp + s, c, 1, &r);
   const int code_bits = rc.window_int_bits + s;  // signed
