@@ -218,15 +218,25 @@ struct VecWriter::Impl {
   std::string line;
 };
 
+// No stale output (docs/vectors.md): the previous pair (hex + manifest) is removed first, both
+// files are written under a ".partial" name and renamed by finish(); a run that fails leaves
+// neither, so no pair from an earlier run passes for this run's.
+static std::string partial(const std::string& p) { return p + ".partial"; }
+
 VecWriter::VecWriter(const std::string& hex_path, const VecLayout& layout)
     : impl_(new Impl), layout_(layout), path_(hex_path) {
-  impl_->f = std::fopen(hex_path.c_str(), "wb");
+  std::remove(hex_path.c_str());
+  std::remove(vec_manifest_path(hex_path).c_str());
+  impl_->f = std::fopen(partial(hex_path).c_str(), "wb");
   if (!impl_->f) throw ConfigError(hex_path + ": cannot write");
   impl_->line.reserve((size_t)layout.digits() + 1);
 }
 
 VecWriter::~VecWriter() {
-  if (impl_ && impl_->f) std::fclose(impl_->f);
+  if (impl_ && impl_->f) {  // not finished: an exception is unwinding
+    std::fclose(impl_->f);
+    std::remove(partial(path_).c_str());
+  }
 }
 
 void VecWriter::write(const VecRow& row) {
@@ -240,6 +250,7 @@ void VecWriter::finish(VecManifest m) {
   const bool bad = std::ferror(impl_->f) != 0;
   if (std::fclose(impl_->f) != 0 || bad) {
     impl_->f = nullptr;
+    std::remove(partial(path_).c_str());
     throw ConfigError(path_ + ": write failed");
   }
   impl_->f = nullptr;
@@ -247,10 +258,19 @@ void VecWriter::finish(VecManifest m) {
   m.hex_file = base_name(path_);
   m.layout = layout_;
   const std::string mp = vec_manifest_path(path_);
-  std::ofstream o(mp, std::ios::binary);
-  if (!o) throw ConfigError(mp + ": cannot write");
-  o << manifest_to_json(m).dump(2) << "\n";
-  if (!o) throw ConfigError(mp + ": write failed");
+  {
+    std::ofstream o(partial(mp), std::ios::binary);
+    o << manifest_to_json(m).dump(2) << "\n";
+    o.close();
+    if (!o) {
+      std::remove(partial(path_).c_str());
+      std::remove(partial(mp).c_str());
+      throw ConfigError(mp + ": cannot write");
+    }
+  }
+  // Hex first, manifest last: a reader needs both, and finds the manifest only once both exist.
+  if (std::rename(partial(path_).c_str(), path_.c_str()) != 0 || std::rename(partial(mp).c_str(), mp.c_str()) != 0)
+    throw ConfigError(path_ + ": cannot rename the finished files into place");
 }
 
 VecManifest write_unit_vectors(const std::string& unit, const Config& cfg, uint64_t seed,

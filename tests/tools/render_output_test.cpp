@@ -63,5 +63,17 @@ TEST(RenderOutput, OversizedImagesAreRefusedBeforeAnyWork) {
   EXPECT_FALSE(fs::exists(d + "/out"));
 }
 
+TEST(VectorsOutput, FinishedFilesOnlyAndThePreviousPairReplaced) {
+  const std::string d = scratch();
+  for (int count : {40, 3}) {
+    ASSERT_EQ(run_cli(d, "vectors div --count " + std::to_string(count) + " --seed 9 --out '" + d + "/v'").exit, 0);
+    for (const auto& e : fs::directory_iterator(d + "/v"))
+      EXPECT_EQ(e.path().filename().string().find(".partial"), std::string::npos) << e.path();
+  }
+  const CliResult r = run_cli(d, "vectors check '" + d + "/v/div.hex'");  // the second run's pair
+  EXPECT_EQ(r.exit, 0) << r.err;
+  EXPECT_NE(r.out.find("77 vectors"), std::string::npos) << r.out;  // 74 directed + 3 random
+}
+
 }  // namespace
 }  // namespace fxr::test
