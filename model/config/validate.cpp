@@ -64,6 +64,18 @@ const std::vector<ConfigRule> kRules = {
        return str(r.z_frac_bits) + ": depth sums need " + str(depth_sum_bits(r)) + " bits, more than " +
               str(kI128ValueBits);
      }},
+    {"raster.attr_plane_sums_fit_int128", RuleScope::Raster, "raster.attr_coord_bits",
+     "attribute-plane 1/w and v/w sums need 2·attr_coord_bits + interp_block_bits + 5 ≤ 127 bits (held in i128)",
+     [](const Config& c) -> std::string {
+       const RasterConfig& r = c.raster;
+       // Attribute-plane edge values take 2·attr_coord_bits + 2 bits (raster_config.hpp, issue 8);
+       // times a block-aligned value (interp_block_bits + sign) summed over three vertices (+2).
+       const int bits = 2 * r.attr_coord_bits + 2 + r.interp_block_bits + kSignBits + kThreeTermSumBits;
+       if (bits <= kI128ValueBits) return "";
+       return str(r.attr_coord_bits) + ": attribute-plane sums need " + str(bits) +
+              " bits (2·attr_coord_bits + interp_block_bits (" + str(r.interp_block_bits) + ") + 5), more than " +
+              str(kI128ValueBits);
+     }},
     {"recip.nr_frac_bits_above_output", RuleScope::Recip, "recip.nr_frac_bits",
      "nr_frac_bits > out_sig_bits (the final rounding needs a bit below the output lsb)",
      [](const Config& c) -> std::string {

@@ -60,6 +60,7 @@ TEST(Validate, EveryRuleHasATestBelow) {
   // The ids tested in this file; a new rule must add its test (and this list).
   const std::set<std::string> tested = {"raster.edge_values_fit_int64", "raster.interp_sums_fit_int128",
                                         "raster.depth_products_fit_int64", "raster.depth_sums_fit_int128",
+                                        "raster.attr_plane_sums_fit_int128",
                                         "recip.nr_frac_bits_above_output", "recip.seed_index_within_input",
                                         "div.iterative_needs_radix2",     "div.quot_bits_derived"};
   std::set<std::string> ids;
@@ -84,6 +85,7 @@ TEST(Validate, InterpolatorSumsMustFitInt128) {
   Config bad, edge;
   bad.raster.window_int_bits = 20, bad.raster.subpixel_bits = 11, bad.raster.interp_block_bits = 62;
   edge.raster.window_int_bits = 20, edge.raster.subpixel_bits = 10, edge.raster.interp_block_bits = 62;
+  edge.raster.attr_coord_bits = 30;  // the attribute planes' own i128 rule: 2·30 + 62 + 5 = 127
   ASSERT_GT(edge_bits_of(bad.raster) + 62 + 1 + 2, kInt128ValueBits);
   ASSERT_EQ(edge_bits_of(edge.raster) + 62 + 1 + 2, kInt128ValueBits);  // exactly at the limit
   const ConfigRule& r = rule("raster.interp_sums_fit_int128");
@@ -113,6 +115,17 @@ TEST(Validate, DepthSumsMustFitInt128) {
   ASSERT_GT(edge_bits_of(bad.raster) + 38 + 1 + 24 + 2, kInt128ValueBits);
   ASSERT_EQ(edge_bits_of(edge.raster) + 38 + 1 + 24 + 2, kInt128ValueBits);
   expect_rule("raster.depth_sums_fit_int128", bad, edge);
+}
+
+TEST(Validate, AttributePlaneSumsMustFitInt128) {
+  // raster_config.hpp: attribute-plane 1/w, v/w sums take 2·attr_coord_bits + interp_block_bits + 5.
+  Config bad, edge;
+  bad.raster.attr_coord_bits = 40, bad.raster.interp_block_bits = 43;   // 128 bits
+  edge.raster.attr_coord_bits = 40, edge.raster.interp_block_bits = 42;  // 127
+  ASSERT_GT(2 * 40 + 43 + 5, kInt128ValueBits);
+  ASSERT_EQ(2 * 40 + 42 + 5, kInt128ValueBits);
+  expect_rule("raster.attr_plane_sums_fit_int128", bad, edge);
+  EXPECT_NO_THROW(validate(Config{}, "defaults"));  // 2·40 + 40 + 5 = 125
 }
 
 TEST(Validate, RecipNeedsAFractionBitBelowTheOutput) {

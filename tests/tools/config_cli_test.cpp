@@ -28,6 +28,8 @@ const std::vector<BadConfig> kBad = {
     {"raster.depth_sums_fit_int128",
      R"({"version": 1, "raster": {"window_int_bits": 20, "subpixel_bits": 11, "z_frac_bits": 38}})",
      "raster.z_frac_bits"},
+    {"raster.attr_plane_sums_fit_int128", R"({"version": 1, "raster": {"attr_coord_bits": 40, "interp_block_bits": 43}})",
+     "raster.attr_coord_bits"},
     {"recip.nr_frac_bits_above_output", R"({"version": 1, "recip": {"nr_frac_bits": 20}})", "recip.nr_frac_bits"},
     {"recip.seed_index_within_input", R"({"version": 1, "recip": {"in_sig_bits": 8, "seed_index_bits": 8}})",
      "recip.seed_index_bits"},
@@ -62,7 +64,8 @@ TEST(ConfigCli, BoundaryConfigurationsAreEmitted) {
   const std::string d = scratch();
   // Each at the limit of its rule; the derived width follows its source.
   const std::vector<std::string> ok = {
-      R"({"version": 1, "raster": {"window_int_bits": 20, "subpixel_bits": 10, "interp_block_bits": 62}})",
+      R"({"version": 1, "raster": {"window_int_bits": 20, "subpixel_bits": 10, "interp_block_bits": 62, "attr_coord_bits": 30}})",
+      R"({"version": 1, "raster": {"attr_coord_bits": 40, "interp_block_bits": 42}})",
       R"({"version": 1, "raster": {"window_int_bits": 20, "subpixel_bits": 10, "z_frac_bits": 38}})",
       R"({"version": 1, "recip": {"nr_frac_bits": 25, "in_sig_bits": 8, "seed_index_bits": 7}})",
       R"({"version": 1, "div": {"schedule": "iterative"}})",
