@@ -118,7 +118,7 @@ void float_raster(const DrawState& st, const std::vector<ClipTriangle>& tris, Fl
         f.prim[o] = (int32_t)t;
         const float q = affine ? 1.0f : l0 * RW[idx[0]] + l1 * RW[idx[1]] + l2 * RW[idx[2]];
         const float rq = 1.0f / q;
-        float* out = &f.var[o * nv];
+        float* out = f.var.data() + o * nv;  // not &var[…]: var is empty when nv == 0
         for (int k = 0; k < nv; ++k)
           out[k] = (l0 * VW[idx[0]][k] + l1 * VW[idx[1]][k] + l2 * VW[idx[2]][k]) * rq;
       }

@@ -134,7 +134,8 @@ void cover(const SetupTriangle& t, int s, int x0, int y0, int w, int h, std::vec
   if (area < 0) std::swap(x[1], x[2]), std::swap(y[1], y[2]);
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
-      const i128 px = ((i128)(x0 + i) << s) + ((i128)1 << s >> 1), py = ((i128)(y0 + j) << s) + ((i128)1 << s >> 1);
+      // Multiplications, not << (x0 + i may be negative: a negative left shift is undefined in C++17).
+      const i128 px = (i128)(x0 + i) * ((i128)1 << s) + ((i128)1 << s >> 1), py = (i128)(y0 + j) * ((i128)1 << s) + ((i128)1 << s >> 1);
       bool in = true;
       for (int e = 0; e < 3 && in; ++e) {
         const int f = (e + 1) % 3;

@@ -42,7 +42,7 @@ bool ref_top_left(P a, P b, P c) {
 }
 
 bool ref_covered(const P v[3], int s, int i, int j) {
-  const i128 px = (i128)(2 * i + 1) << s, py = (i128)(2 * j + 1) << s;
+  const i128 px = (i128)(2 * i + 1) * ((i128)1 << s), py = (i128)(2 * j + 1) * ((i128)1 << s);  // i may be < 0
   if (orient(v[0].x, v[0].y, v[1].x, v[1].y, v[2].x, v[2].y) == 0) return false;  // zero area
   for (int k = 0; k < 3; ++k) {
     const P a = v[k], b = v[(k + 1) % 3], c = v[(k + 2) % 3];

@@ -102,7 +102,9 @@ TEST(Recip, MeasureAgreesWithIndependentCountOnANonFaithfulDesign) {
 
 TEST(Recip, SeedTableIsMinimaxOnItsGrid) {
   // GMP rationals: no neighbouring grid value has a smaller largest endpoint error.
-  for (const auto& [s, k] : {std::pair{6, 6}, std::pair{5, 7}, std::pair{3, 4}, std::pair{8, 8}}) {
+  for (const auto& sk : {std::pair{6, 6}, std::pair{5, 7}, std::pair{3, 4}, std::pair{8, 8}}) {
+    // Plain variables, not a structured binding: C++17 lambdas cannot capture those (clang).
+    const int s = sk.first, k = sk.second;
     RecipConfig cfg;
     cfg.seed_index_bits = s;
     cfg.seed_frac_bits = k;

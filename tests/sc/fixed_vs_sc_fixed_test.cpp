@@ -254,7 +254,7 @@ TEST(FixedVsScFixed, ConvertMatchesOnRandomValuesAcrossFormats) {
     // than the destination.
     const int sf = dst.frac - 8 + (int)(rng() % 69);
     const int src_bits = 1 + (int)(rng() % 120);
-    i128 src = ((i128)(int64_t)rng() << 64) | (i128)rng();
+    i128 src = (i128)(((unsigned __int128)rng() << 64) | rng());  // same bits, no negative left shift
     src >>= (128 - src_bits);  // arithmetic: signed value of src_bits bits
     expect_convert(src, sf, dst);
     if (HasFatalFailure()) return;
