@@ -16,6 +16,7 @@
 #include "model/config/param.hpp"
 #include "model/config/raster_config.hpp"
 #include "model/stages/recip.hpp"
+#include "model/stages/texaddr.hpp"
 
 namespace fxr {
 
@@ -28,12 +29,14 @@ struct Config {
   RasterConfig raster;
   DivConfig div;
   RecipConfig recip;
+  TexAddrConfig tex_addr;
 
   template <class F>
   void for_each_unit(F&& f) {
     f("raster", raster);
     f("div", div);
     f("recip", recip);
+    f("tex_addr", tex_addr);
   }
   template <class F>
   void for_each_unit(F&& f) const {

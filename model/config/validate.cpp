@@ -192,5 +192,10 @@ void validate(const DivConfig& c, const std::string& where) {
   w.div = c;
   validate_unit("div", RuleScope::Div, c, w, where);
 }
+void validate(const TexAddrConfig& c, const std::string& where) {
+  Config w;
+  w.tex_addr = c;
+  validate_unit("tex_addr", RuleScope::TexAddr, c, w, where);
+}
 
 }  // namespace fxr

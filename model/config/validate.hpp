@@ -21,7 +21,7 @@ namespace fxr {
 
 // Which configurations a rule applies to: the whole Config (cross-unit), or one unit on its
 // own (also checked when the unit is swept or vectored without the rest of the configuration).
-enum class RuleScope { Config, Raster, Recip, Div };
+enum class RuleScope { Config, Raster, Recip, Div, TexAddr };
 
 struct ConfigRule {
   const char* id;         // short name, e.g. "recip.nr_frac_bits_above_output"
@@ -55,6 +55,7 @@ void validate(const Config& cfg, const std::string& where);
 void validate(const RasterConfig& cfg, const std::string& where);
 void validate(const RecipConfig& cfg, const std::string& where);
 void validate(const DivConfig& cfg, const std::string& where);
+void validate(const TexAddrConfig& cfg, const std::string& where);
 
 inline constexpr int kMaxReportedProblems = 8;
 
