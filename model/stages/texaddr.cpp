@@ -55,7 +55,7 @@ i128 scale_round(const TexAddrConfig& c, const FxFloat& u, uint32_t size, int ex
   const int e = std::min(u.exp, kExpReduced) + extra;
   const i128 mag = (i128)u.sig * size;  // < 2^(sig_bits + size_bits), exact
   const i128 x = u.neg ? -mag : mag;
-  if (e >= 0) return (x << e) - offset;  // < 2^(sig_bits + size_bits + 1 + F) ≤ 2^65
+  if (e >= 0) return x * ((i128)1 << e) - offset;  // |x·2^e| < 2^(sig_bits + size_bits + 1 + F) ≤ 2^65 (no shift of a negative)
   const int s = std::min(-e, c.sig_bits + c.size_bits + kShiftCapMargin);
   // offset·2^s < 2^(F − 1 + sig_bits + size_bits + 2) ≤ 2^65: exact in i128.
   return shift_round(x - (offset << s), s, r);  // the unit's one rounding (floor or RNE)
