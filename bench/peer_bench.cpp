@@ -4,7 +4,8 @@
 //               context creation, shader compilation and vertex upload excluded; each iteration
 //               is clear + draw + glFinish;
 //   - model:    fxr::run_raster_unit on the default configuration (keeps every Fragment);
-//   - stream:   the same stages (geometry + raster_triangle_to) streaming fragments into an image.
+//   - stream:   the same stages (run_raster_unit_to: the stage chain of model/unit/chain.hpp)
+//               streaming fragments into an image.
 // Scenes at 1024 × 1024: the bunny (69,666 triangles, setup-bound) and a grazing textured
 // plane (2 triangles, fill-bound), with 0 and 2 varyings, depth test on (less).
 // items/s = fragments/s, fragments = covered samples before the depth test, each renderer
@@ -25,6 +26,7 @@
 #include "model/unit/geometry.hpp"
 #include "model/unit/backend.hpp"
 #include "model/unit/raster_unit.hpp"
+#include "model/unit/chain.hpp"
 
 using namespace fxr;
 using namespace fxr::peer;
@@ -123,14 +125,9 @@ void BM_ModelStream(benchmark::State& state) {
   sink.nv = s.st.num_varyings;
   sink.var.assign((size_t)sink.width * (size_t)(s.st.viewport_y + s.st.viewport_h) * (size_t)sink.nv, FxFloat{});
   FrameOutput f;
-  std::vector<SetupTriangle> pieces;
+  NoTaps taps;
   for (auto _ : state) {
-    frame_begin(cfg, s.st, f);
-    for (size_t p = 0; p < s.tris.size(); ++p) {
-      pieces.clear();
-      if (geometry(cfg, s.st, s.tris[p], (uint32_t)p, pieces, f.stats) != GeomOutcome::Emitted) continue;
-      for (const SetupTriangle& t : pieces) raster_triangle_to(cfg, s.st, t, f, &sink);
-    }
+    run_raster_unit_to(cfg, s.st, s.tris, f, &sink, taps);  // the stage chain, no tap attached
     benchmark::DoNotOptimize(sink.var.data());
   }
   state.SetItemsProcessed((int64_t)state.iterations() * (int64_t)f.stats.fragments_generated);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "model/unit/backend.hpp"
+#include "model/unit/chain.hpp"
 
 using namespace fxr;
 
@@ -121,11 +122,15 @@ void run_model(benchmark::State& state, int which) {
   uint64_t frags = 0;
   for (auto _ : state) {
     frame_begin(cfg, st, f);
+    NoTaps taps;
     if (stream) {
-      for (const SetupTriangle& t : sc.tris) raster_triangle_to(cfg, st, t, f, &sink);
+      FragmentChain<NoTaps> chain(cfg, st, f, &sink, taps);  // stages 5–10, set up once per frame
+      for (const SetupTriangle& t : sc.tris) chain.run(t);
     } else {
       f.fragments.reserve((size_t)kSize * kSize);
-      for (const SetupTriangle& t : sc.tris) raster_triangle(cfg, st, t, f);
+      KeepFragments keep(f.fragments);
+      FragmentChain<NoTaps> chain(cfg, st, f, &keep, taps);
+      for (const SetupTriangle& t : sc.tris) chain.run(t);
     }
     frags += f.stats.fragments_generated;
     benchmark::DoNotOptimize(f.fragments.data());

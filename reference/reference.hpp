@@ -21,6 +21,7 @@
 #include <gmpxx.h>
 
 #include "model/config/config.hpp"
+#include "model/stages/setup.hpp"
 #include "model/unit/io.hpp"
 
 namespace fxr {

@@ -424,4 +424,21 @@ ClipPolygon clip_triangle(const GuardBand& gb, const ClipWidths& cw, const ClipV
   return poly;
 }
 
+StageCost ClipStage::cost(const Config& cfg) {
+  const int sb = clip_vertex_sig_bits(cfg);
+  const int coef = cfg.raster.window_int_bits + 2;  // guard-band plane coefficients n_left … n_top
+  StageCost c;
+  // Outcodes: per vertex and guard-band plane a·p + b·w (2 products); one intersection unit:
+  // 2 products per component (c_e·d_s, c_s·d_e) and a divider, iterated over the components.
+  for (int v = 0; v < 3; ++v)
+    for (int p = 0; p < 4; ++p) c.add_mult(sb, coef), c.add_mult(sb, coef);
+  c.add_mult(sb, 2 * sb + coef);
+  c.add_mult(sb, 2 * sb + coef);
+  c.latency = kNumClipPlanes;  // one plane per clock (estimate until rtl/ has the stage)
+  c.ii = 1;                    // trivially accepted triangles; a clipped one takes longer
+  c.adder_bits = 3 * (int64_t)kNumClipPlanes * (sb + coef);
+  c.ff_bits = record_bits<ClippedTriangle>(cfg, kMaxVaryings);
+  return c;
+}
+
 }  // namespace fxr

@@ -13,15 +13,10 @@
 #include <cstdint>
 
 #include "model/config/config.hpp"
+#include "model/stages/input.hpp"
 #include "model/unit/io.hpp"
 
 namespace fxr {
-
-// A vertex inside the geometry stages: exact dyadic values (FxFloat), position then varyings.
-struct ClipVtx {
-  FxFloat p[4];               // x_c, y_c, z_c, w_c
-  FxFloat v[kMaxVaryings];    // v_0 … v_{N−1}
-};
 
 // Planes in the order Sutherland–Hodgman applies them. Inside means d ≥ 0.
 enum ClipPlane : uint8_t { kPlaneWMin, kPlaneNear, kPlaneFar, kPlaneLeft, kPlaneRight,
@@ -106,5 +101,85 @@ struct ClipPolygon {
 // no new vertex. The output polygon is convex, in the input's winding; vertices are either
 // input vertices or outputs of clip_intersect on an edge of the current polygon.
 ClipPolygon clip_triangle(const GuardBand& gb, const ClipWidths& cw, const ClipVtx in[3]);
+
+// ---- the stage ------------------------------------------------------------------------------
+
+// Stage 2 output: one triangle inside the clip volume (an input triangle accepted whole, or one
+// triangle of the fan of a clipped polygon). Only the active varyings are set.
+struct ClippedTriangle {
+  uint32_t prim = 0;
+  ClipVtx v[3];
+
+  template <class V>
+  void visit(V& v_, const RecordShape& s) {
+    v_("prim", prim, kPrimIdBits, false);
+    for (int i = 0; i < 3; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s);
+  }
+};
+
+enum class ClipOutcome : uint8_t {
+  Accepted,          // trivial accept: the input triangle, unchanged (1 output)
+  Clipped,           // went through Sutherland–Hodgman: n − 2 ≥ 1 fan triangles
+  CulledOutside,     // trivial reject: all three vertices outside one plane (0 outputs)
+  ClippedAway,       // went through the clipper, nothing left (0 outputs)
+  RejectedViewport,  // invalid viewport: no window coordinate is representable (0 outputs)
+  RejectedOverflow,  // the clipper's internal bound (not reachable from float32 inputs)
+};
+struct ClipReport {
+  ClipOutcome outcome = ClipOutcome::Accepted;
+  int vertices_created = 0;  // intersections made (also when the result is rejected)
+};
+
+class ClipStage {
+ public:
+  static constexpr const char* kName = "clip";
+  using In = ExactTriangle;
+  using Out = ClippedTriangle;
+
+  ClipStage(const Config& cfg, const DrawState& st)
+      : gb_(guard_band(cfg.raster, st)), cw_(clip_widths(cfg, st.num_varyings)), nv_(st.num_varyings) {}
+
+  // 1 → 0..n triangles. The fan (v0, v_i, v_i+1) of the clipped polygon keeps the input's
+  // winding.
+  template <class Emit>
+  ClipReport step(const In& in, Emit&& emit) {
+    ClipReport r;
+    if (!gb_.valid) return r.outcome = ClipOutcome::RejectedViewport, r;
+    const uint32_t oc0 = outcode(gb_, in.v[0]), oc1 = outcode(gb_, in.v[1]), oc2 = outcode(gb_, in.v[2]);
+    if (oc0 & oc1 & oc2) return r.outcome = ClipOutcome::CulledOutside, r;  // all outside one plane
+    out_.prim = in.prim;
+    if ((oc0 | oc1 | oc2) == 0) {  // trivial accept: all inside every plane, no clipper
+      for (int i = 0; i < 3; ++i) copy_vertex(in.v[i], out_.v[i]);
+      emit(static_cast<const Out&>(out_));
+      return r;
+    }
+    const ClipPolygon poly = clip_triangle(gb_, cw_, in.v);
+    r.vertices_created = poly.created;
+    if (poly.overflow) return r.outcome = ClipOutcome::RejectedOverflow, r;
+    if (poly.n < 3) return r.outcome = ClipOutcome::ClippedAway, r;  // clip_triangle gives 0 or ≥ 3
+    r.outcome = ClipOutcome::Clipped;
+    for (int i = 1; i + 1 < poly.n; ++i) {
+      copy_vertex(poly.v[0], out_.v[0]);
+      copy_vertex(poly.v[i], out_.v[1]);
+      copy_vertex(poly.v[i + 1], out_.v[2]);
+      emit(static_cast<const Out&>(out_));
+    }
+    return r;
+  }
+
+  // Planned RTL: outcodes (2 multipliers per plane test) and one intersection unit
+  // (clip_intersect: exact products, one division per component), iterative over planes.
+  static StageCost cost(const Config& cfg);
+
+ private:
+  void copy_vertex(const ClipVtx& a, ClipVtx& b) const {  // the active part only
+    for (int c = 0; c < 4; ++c) b.p[c] = a.p[c];
+    for (int k = 0; k < nv_; ++k) b.v[k] = a.v[k];
+  }
+  GuardBand gb_;
+  ClipWidths cw_;
+  int nv_;
+  ClippedTriangle out_;
+};
 
 }  // namespace fxr

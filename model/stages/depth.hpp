@@ -1,4 +1,5 @@
-// model/stages/depth.hpp — stage 8 (depth): the depth code of a pixel and the depth test.
+// model/stages/depth.hpp — stage 8 (depth test). The depth code of a pixel is interpolated in
+// stage 7 (model/stages/interp.hpp: DepthStepper); its derivation:
 // docs/pipeline.md, stage 8.
 //
 // z is affine in window space (D3D, Vulkan): z = Σ E_k·z_k / 2A with z_k the per-vertex
@@ -12,43 +13,9 @@
 
 #include <cstdint>
 
-#include "model/arith/round.hpp"
 #include "model/stages/interp.hpp"
 
 namespace fxr {
-
-// The maximum depth code (buffer clear value): 2^depth_bits − 1.
-inline uint32_t depth_max_code(const RasterConfig& c) { return (uint32_t)((1u << c.depth_bits()) - 1); }
-
-struct DepthSetup {
-  Plane z;     // Σ E_k·z_k·(2^depth_bits − 1)
-  i128 den = 0;  // 2A · 2^z_frac_bits (> 0)
-};
-// Contract: exact; needs z_k ≤ 2^z_frac_bits (setup rejects larger as RejectedRange).
-DepthSetup depth_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup& t);
-
-// floor(a / d) with remainder in [0, d), d > 0.
-inline void floor_divmod(i128 a, i128 d, i128& q, i128& r) {
-  q = a / d;
-  r = a % d;
-  if (r < 0) r += d, q -= 1;
-}
-
-// Exact stepping of RNE(Z / den) along +x.
-struct DepthStepper {
-  i128 q = 0, r = 0, dq = 0, dr = 0, den = 1;
-  DepthStepper(const DepthSetup& s, int i, int j) : den(s.den) {
-    floor_divmod(s.z.at(i, j), den, q, r);
-    floor_divmod(s.z.dx, den, dq, dr);
-  }
-  void step_x() {
-    q += dq;
-    r += dr;
-    if (r >= den) r -= den, q += 1;
-  }
-  // Round to nearest, ties to even.
-  uint32_t code() const { return (uint32_t)(rne_round_up<i128>(q, r, den) ? q + 1 : q); }
-};
 
 // Contract: the depth comparison `incoming func stored` (GL / D3D semantics).
 inline bool depth_compare(DepthFunc f, uint32_t incoming, uint32_t stored) {
@@ -64,5 +31,48 @@ inline bool depth_compare(DepthFunc f, uint32_t incoming, uint32_t stored) {
   }
   return false;
 }
+
+// ---- the stage ------------------------------------------------------------------------------
+
+// The depth buffer a DepthStage tests against: w × h codes, row 0 at the bottom, indexed from
+// the viewport origin (FrameOutput::depth).
+struct DepthBufferView {
+  uint32_t* codes = nullptr;
+  int width = 0;
+  int x0 = 0, y0 = 0;  // window coordinates of codes[0]
+};
+
+class DepthStage {
+ public:
+  static constexpr const char* kName = "depth";
+  using In = PlaneSample;
+  using Out = PlaneSample;
+
+  DepthStage(const Config&, const DrawState& st, DepthBufferView buf)
+      : buf_(buf), func_(st.depth_func), test_(st.depth_test), write_(st.depth_write) {}
+
+  // 1 → 0..1: the sample passes on unchanged when it passes the test (st.depth_test false:
+  // always passes and never writes, as in GL); a passing sample is written when
+  // st.depth_write. State: the depth buffer (the only state of the unit). Returns pass.
+  template <class Emit>
+  bool step(const In& in, Emit&& emit) {
+    bool pass = true;
+    if (test_) {
+      uint32_t& stored = buf_.codes[(size_t)(in.y - buf_.y0) * (size_t)buf_.width + (size_t)(in.x - buf_.x0)];
+      pass = depth_compare(func_, in.depth, stored);
+      if (pass && write_) stored = in.depth;
+    }
+    if (pass) emit(in);
+    return pass;
+  }
+
+  // Planned RTL: one depth_bits comparator, a read-modify-write port of the buffer.
+  static StageCost cost(const Config& cfg);
+
+ private:
+  DepthBufferView buf_;
+  DepthFunc func_;
+  bool test_, write_;
+};
 
 }  // namespace fxr

@@ -1,5 +1,6 @@
-// model/stages/interp.hpp — stage 7 (interpolators) and stage 9 (per-pixel divide) of the raster unit.
-// docs/pipeline.md, stages 7 and 9.
+// model/stages/interp.hpp — stage 7 (interpolators): z, 1/w and every v/w at the pixel centre.
+// The planes are built in setup (model/stages/setup.hpp), the divide is stage 9
+// (model/stages/divide.hpp). docs/pipeline.md, stages 7 and 9.
 //
 // Everything the unit interpolates is an affine function of the pixel (i, j) with exact
 // integer coefficients: for per-vertex integers Q_k,
@@ -21,80 +22,119 @@
 #include "model/config/config.hpp"
 #include "model/arith/div.hpp"
 #include "model/arith/fxfloat.hpp"
+#include "model/arith/round.hpp"
 #include "model/stages/setup.hpp"
+#include "model/stages/traverse.hpp"
+#include "model/unit/record.hpp"
+#include "model/unit/stage.hpp"
 
 namespace fxr {
 
-// P(i, j) = c + i·dx + j·dy over pixel indices (exact; widths checked by validate(), model/config/validate.hpp).
-struct Plane {
-  i128 c = 0, dx = 0, dy = 0;
-  i128 at(int i, int j) const { return c + (i128)i * dx + (i128)j * dy; }
-};
-
-// Contract: the plane Σ_k E_k(centre(i, j))·q[k] of a set-up triangle; exact.
-//   |q[k]| < 2^qbits gives |P| < 2^(edge_value_bits + qbits + 1) inside the window range.
-Plane make_plane(const TriSetup& t, const int64_t q[3]);
-
-// Three values on one block exponent: value_k = q[k] · 2^exp.
-struct Block3 {
-  int64_t q[3] = {0, 0, 0};
-  int exp = 0;
-};
-
-// Contract: aligns three FxFloats to the block exponent of the largest magnitude, which gets
-// its msb at bit `bits` − 1 (bits ≤ 62); the others are shifted right by their lead-exponent
-// difference and rounded to nearest even — PRECISION IS LOST HERE when that difference
-// exceeds bits − (significand bits); a value below half a block ulp becomes 0. Signs kept
-// (two's complement). All three zero: q = 0, exp = 0. Rounding never overflows (a carry of
-// the largest to 2^bits still fits int64).
-Block3 align_block(const FxFloat v[3], int bits);
-
-// Per-triangle interpolation setup: the denominator plane and one numerator plane per varying.
-struct InterpSetup {
-  Plane den;                 // D = Σ E_k·R_k (> 0 inside), value D·2^den_exp
-  int den_exp = 0;
-  Plane num[kMaxVaryings];   // N_m = Σ E_k·V_{m,k}, value N_m·2^num_exp[m]
-  int num_exp[kMaxVaryings] = {};
-  int n = 0;                 // number of varyings
-};
-
-// Contract: builds the planes of stage 7 for `tri` (perspective: D from rw; affine: D = 2A,
-// i.e. R_k = 1). Uses raster.interp_block_bits. Exact apart from align_block's rounding.
-void interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const TriSetup& t,
-                  InterpSetup& out);
-
-// Contract (stage 9): the varying N·2^en / (D·2^ed) as a normalised FxFloat with
-// div.quot_bits (= raster.varying_out_sig_bits) significand bits.
-//   D > 0 (always inside a triangle with all rw_k > 0); D ≤ 0 or N == 0 → zero (sig 0).
-//   |N| is rounded (RNE) to div.num_bits and D to div.den_bits significant bits — PRECISION
-//   IS LOST HERE when they have more bits — then div_sig rounds the quotient (RNE).
-//   Sign-magnitude: the divider sees magnitudes, the sign of N is the result's sign.
-struct DenNorm {
-  uint64_t d = 0;  // D's significand, msb at den_bits − 1
-  int e = 0;       // msb index of D (after rounding carry) + ed
-};
-inline DenNorm normalize_den(const DivConfig& dc, i128 D, int ed) {
-  DenNorm r;
-  if (D <= 0) return r;
-  const Normalized nd = normalize((u128)D, dc.den_bits, Round::HalfEven);
-  r.d = nd.sig;
-  r.e = nd.exp + ed;
-  return r;
-}
-inline FxFloat divide_varying(const DivConfig& dc, i128 N, int en, const DenNorm& dn) {
-  FxFloat out;
-  if (N == 0 || dn.d == 0) return out;
-  out.neg = N < 0;
-  const u128 mag = N < 0 ? (u128)0 - (u128)N : (u128)N;
-  const Normalized nn = normalize(mag, dc.num_bits, Round::HalfEven);
-  const DivSig q = div_sig(dc, nn.sig, dn.d);
-  // value = sig·2^−(qb−1)·2^exp_adj · 2^(msb N + en) / 2^(msb D + ed)
-  out.sig = q.sig;
-  out.exp = q.exp_adj + (nn.exp + en) - dn.e - (dc.quot_bits - 1);
-  return out;
-}
-
 // div.quot_bits is derived from raster.varying_out_sig_bits (model/config/validate.hpp:
 // derive_widths; validate() rejects a configuration where they differ).
+
+// ---- z: exact stepping of the depth code (derivation in model/stages/depth.hpp) -------------
+
+// floor(a / d) with remainder in [0, d), d > 0.
+inline void floor_divmod(i128 a, i128 d, i128& q, i128& r) {
+  q = a / d;
+  r = a % d;
+  if (r < 0) r += d, q -= 1;
+}
+
+// Exact stepping of RNE(Z / den) along +x.
+struct DepthStepper {
+  i128 q = 0, r = 0, dq = 0, dr = 0, den = 1;
+  DepthStepper(const DepthSetup& s, int i, int j) : den(s.den) {
+    floor_divmod(s.z.at(i, j), den, q, r);
+    floor_divmod(s.z.dx, den, dq, dr);
+  }
+  void step_x() {
+    q += dq;
+    r += dr;
+    if (r >= den) r -= den, q += 1;
+  }
+  // Round to nearest, ties to even.
+  uint32_t code() const { return (uint32_t)(rne_round_up<i128>(q, r, den) ? q + 1 : q); }
+};
+
+// ---- the stage ------------------------------------------------------------------------------
+
+// Stage 7 output: the planes at one pixel centre — the depth code (raster.depth_bits(), rounded
+// once, RNE), the 1/w sum D = den·2^den_exp and the v/w sums N_m = num[m]·2^num_exp[m] (exact,
+// signed interp_plane_bits), the exponents being the triangle's block exponents.
+struct PlaneSample {
+  uint32_t prim = 0;
+  int32_t x = 0, y = 0;
+  uint32_t depth = 0;
+  i128 den = 0;
+  int den_exp = 0;
+  i128 num[kMaxVaryings] = {};
+  int num_exp[kMaxVaryings] = {};
+
+  template <class V>
+  void visit(V& v, const RecordShape& s) {
+    const RasterConfig& r = s.cfg.raster;
+    v("prim", prim, kPrimIdBits, false);
+    v("x", x, r.window_int_bits, true);
+    v("y", y, r.window_int_bits, true);
+    v("depth", depth, r.depth_bits(), false);
+    v("den", den, interp_plane_bits(r), true);
+    v("den_exp", den_exp, fx_exp_field_bits(s.cfg), true);
+    for (int m = 0; m < s.num_varyings; ++m) {
+      const std::string p = "num" + std::to_string(m);
+      v(p, num[m], interp_plane_bits(r), true);
+      v(p + "_exp", num_exp[m], fx_exp_field_bits(s.cfg), true);
+    }
+  }
+};
+
+class InterpStage {
+ public:
+  static constexpr const char* kName = "interp";
+  using Context = TriangleEquations;  // the triangle's planes, latched once per triangle
+  using In = Span;
+  using Out = PlaneSample;
+
+  // with_varyings false: only the depth code (D and N are left 0).
+  InterpStage(const Config&, const DrawState& st, bool with_varyings = true)
+      : nv_(with_varyings ? st.num_varyings : 0) {}
+
+  // 1 → n: one sample per pixel of the span, left to right. The planes are evaluated directly
+  // at the span start and stepped exactly along x (every stepped value is the direct value).
+  template <class Emit>
+  void step(const Context& t, const In& in, Emit&& emit) {
+    const int nv = nv_;
+    DepthStepper dz(t.depth, in.x0, in.y);
+    s_.prim = t.prim;
+    s_.y = in.y;
+    if (nv > 0) {
+      s_.den = t.interp.den.at(in.x0, in.y);
+      s_.den_exp = t.interp.den_exp;
+      for (int m = 0; m < nv; ++m) {
+        s_.num[m] = t.interp.num[m].at(in.x0, in.y);
+        s_.num_exp[m] = t.interp.num_exp[m];
+      }
+    }
+    for (int i = in.x0; i <= in.x1; ++i) {
+      s_.x = i;
+      s_.depth = dz.code();
+      emit(static_cast<const Out&>(s_));
+      dz.step_x();
+      if (nv > 0) {
+        s_.den += t.interp.den.dx;
+        for (int m = 0; m < nv; ++m) s_.num[m] += t.interp.num[m].dx;
+      }
+    }
+  }
+
+  // Planned RTL: per plane one interp_plane_bits accumulator (depth: a quotient / remainder
+  // DDA of depth_plane_bits), one pixel per clock.
+  static StageCost cost(const Config& cfg);
+
+ private:
+  int nv_;
+  PlaneSample s_;
+};
 
 }  // namespace fxr

@@ -2,6 +2,7 @@
 #include "model/stages/setup.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <string>
 
 namespace fxr {
@@ -90,6 +91,89 @@ SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const SetupT
   out.y0 = (int)by0;
   out.y1 = (int)by1;
   return SetupOutcome::Ok;
+}
+
+// ---- planes (stages 7 and 8 read them) ------------------------------------------------------
+
+Plane make_plane(const TriSetup& t, const int64_t q[3]) {
+  // P(i, j) = Σ_k (a_k·(i·2^g + h) + b_k·(j·2^g + h) + c_k)·q_k, h = 2^(g−1): exact in i128.
+  const int64_t h = (int64_t)1 << (t.g - 1);
+  Plane p;
+  for (int k = 0; k < 3; ++k) {
+    const EdgeEq& e = t.e[k];
+    p.dx += (i128)e.a * q[k] * ((i128)1 << t.g);  // signed: a multiply, not a negative <<
+    p.dy += (i128)e.b * q[k] * ((i128)1 << t.g);
+    p.c += (i128)(e.a * h + e.b * h + e.c) * q[k];
+  }
+  return p;
+}
+
+Block3 align_block(const FxFloat v[3], int bits) {
+  Block3 b;
+  int lead = INT_MIN;
+  for (int k = 0; k < 3; ++k)
+    if (!v[k].is_zero()) lead = std::max(lead, v[k].lead_exp());
+  if (lead == INT_MIN) return b;
+  b.exp = lead - (bits - 1);
+  for (int k = 0; k < 3; ++k) {
+    if (v[k].is_zero()) continue;
+    // sig·2^exp / 2^b.exp = sig·2^−(b.exp − exp): a right shift with RNE (precision lost when
+    // > 0), or an exact left shift that keeps the value below 2^bits.
+    const i128 m = shift_round((i128)v[k].sig, b.exp - v[k].exp, Round::HalfEven);
+    b.q[k] = v[k].neg ? -(int64_t)m : (int64_t)m;
+  }
+  return b;
+}
+
+void interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const TriSetup& t,
+                  InterpSetup& out) {
+  const int bits = cfg.raster.interp_block_bits;
+  out.n = st.num_varyings;
+  if (st.interp == InterpMode::Affine) {
+    const int64_t one[3] = {1, 1, 1};  // R_k = 1: D = 2A
+    out.den = make_plane(t, one);
+    out.den_exp = 0;
+  } else {
+    const FxFloat rw[3] = {tri.v[0].rw, tri.v[1].rw, tri.v[2].rw};
+    const Block3 r = align_block(rw, bits);
+    out.den = make_plane(t, r.q);
+    out.den_exp = r.exp;
+  }
+  for (int m = 0; m < out.n; ++m) {
+    const FxFloat vw[3] = {tri.v[0].vw[m], tri.v[1].vw[m], tri.v[2].vw[m]};
+    const Block3 b = align_block(vw, bits);
+    out.num[m] = make_plane(t, b.q);
+    out.num_exp[m] = b.exp;
+  }
+}
+
+DepthSetup depth_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup& t) {
+  const int64_t M = (int64_t)depth_max_code(cfg.raster);
+  int64_t q[3];
+  for (int k = 0; k < 3; ++k) q[k] = (int64_t)tri.v[k].z * M;  // ≤ 2^(z_frac_bits + depth_bits) < 2^63
+  DepthSetup d;
+  d.z = make_plane(t, q);
+  d.den = (i128)t.area2 << cfg.raster.z_frac_bits;
+  return d;
+}
+
+StageCost SetupStage::cost(const Config& cfg) {
+  const RasterConfig& r = cfg.raster;
+  StageCost c;
+  const int cb = coord_bits(r);
+  // Edge constants x_a·y_b − x_b·y_a: 6 coordinate products (the area is E_0(v_0): 2 more).
+  for (int k = 0; k < 8; ++k) c.add_mult(cb, cb);
+  // Planes: per plane 3 vertex values × (a, b, c): 9 products of an edge field by the value.
+  const int planes_interp = kMaxVaryings + 1;  // 1/w and every v/w (sized for the maximum)
+  for (int p = 0; p < planes_interp; ++p)
+    for (int k = 0; k < 9; ++k) c.add_mult(edge_value_bits(r), r.interp_block_bits + 1);
+  for (int k = 0; k < 9; ++k) c.add_mult(edge_value_bits(r), r.z_frac_bits + 1 + r.depth_bits());
+  // Block alignment: 3 shifters per plane; bounding box: 4 compares, scissor 4 more.
+  c.adder_bits = 6 * (int64_t)edge_coef_bits(r) + 8 * (int64_t)r.window_int_bits;
+  c.latency = 4;  // products, sums, alignment, bounding box (estimate until rtl/ has the stage)
+  c.ii = 1;
+  c.ff_bits = c.latency * record_bits<TriangleEquations>(cfg, kMaxVaryings);
+  return c;
 }
 
 }  // namespace fxr

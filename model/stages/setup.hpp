@@ -29,7 +29,10 @@
 
 #include "model/config/config.hpp"
 #include "model/arith/fixed.hpp"
+#include "model/arith/fxfloat.hpp"
 #include "model/unit/io.hpp"
+#include "model/unit/record.hpp"
+#include "model/unit/stage.hpp"
 
 namespace fxr {
 
@@ -53,7 +56,50 @@ inline constexpr int kEdgeValueMaxBits = 63;
 // The rules that keep edge values in int64 and the interpolator / depth sums in i128 are
 // checked by validate() (model/config/validate.hpp), which frame_begin calls.
 
-// ---- setup record ------------------------------------------------------------------------
+// ---- stage 5 input: the record between the geometry stages (1–4) and the raster stages (5–10)
+//
+// A vertex after input conversion, clipping, the reciprocal unit, the perspective divide and
+// viewport snapping. Formats (named in the configuration, see docs/pipeline.md):
+//   x, y: window coordinates in subpixel units (raster.subpixel_bits fraction bits), snapped
+//         with round-to-nearest-even; y up, pixel centres at (i + ½)·2^subpixel_bits.
+//   z:    z_c / w_c ∈ [0, 1] as an unsigned fraction with raster.z_frac_bits bits.
+//   rw:   1/w_c from the reciprocal unit, a normalised FxFloat (recip.out_sig_bits significand).
+//   vw:   v_k · (1/w_c) per varying, a normalised FxFloat (raster.varying_sig_bits), or, in the
+//         affine mode, v_k itself.
+struct SetupVertex {
+  int64_t x = 0, y = 0;
+  uint64_t z = 0;
+  FxFloat rw;
+  FxFloat vw[kMaxVaryings];
+
+  // Widths: x, y signed window_int_bits + subpixel_bits (the snap's range), z z_frac_bits + 1
+  // (z = 1 is 2^z_frac_bits).
+  template <class V>
+  void visit(V& v, const RecordShape& s, const std::string& pre) {
+    const RasterConfig& r = s.cfg.raster;
+    v(pre + "x", x, r.window_int_bits + r.subpixel_bits, true);
+    v(pre + "y", y, r.window_int_bits + r.subpixel_bits, true);
+    v(pre + "z", z, r.z_frac_bits + 1, false);
+    visit_fx(v, pre + "rw", rw, s.cfg.recip.out_sig_bits, s);
+    for (int k = 0; k < s.num_varyings; ++k) visit_fx(v, pre + "vw" + std::to_string(k), vw[k], r.varying_sig_bits, s);
+  }
+};
+
+// Stage 4 output, stage 5 input. (A second, higher-precision set of vertex positions for the
+// depth and varying planes would be added here and used by the plane builders below, apart
+// from the snapped x, y that decide coverage.)
+struct SetupTriangle {
+  SetupVertex v[3];
+  uint32_t prim = 0;  // index of the input primitive it came from
+
+  template <class V>
+  void visit(V& v_, const RecordShape& s) {
+    v_("prim", prim, kPrimIdBits, false);
+    for (int i = 0; i < 3; ++i) v[i].visit(v_, s, field_prefix("v", i));
+  }
+};
+
+// ---- coverage: edge functions ------------------------------------------------------------------------
 
 // One edge function on the sample grid: E(X, Y) = a·X + b·Y + c, and its top-left bias.
 struct EdgeEq {
@@ -94,5 +140,145 @@ PixelRect draw_rect(const DrawState& st);
 //   No candidate pixel (bbox of the pixel centres inside the vertex bbox ∩ draw_rect) →
 //   CulledNoSamples. Otherwise Ok and `out` filled. All arithmetic exact (int64).
 SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const SetupTriangle& tri, TriSetup& out);
+
+// ---- plane equations for z, 1/w and v/w (docs/pipeline.md, stages 7 and 8) -----------------
+
+// P(i, j) = c + i·dx + j·dy over pixel indices (exact; widths checked by validate(), model/config/validate.hpp).
+struct Plane {
+  i128 c = 0, dx = 0, dy = 0;
+  i128 at(int i, int j) const { return c + (i128)i * dx + (i128)j * dy; }
+};
+
+// Contract: the plane Σ_k E_k(centre(i, j))·q[k] of a set-up triangle; exact.
+//   |q[k]| < 2^qbits gives |P| < 2^(edge_value_bits + qbits + 1) inside the window range.
+Plane make_plane(const TriSetup& t, const int64_t q[3]);
+
+// Three values on one block exponent: value_k = q[k] · 2^exp.
+struct Block3 {
+  int64_t q[3] = {0, 0, 0};
+  int exp = 0;
+};
+
+// Contract: aligns three FxFloats to the block exponent of the largest magnitude, which gets
+// its msb at bit `bits` − 1 (bits ≤ 62); the others are shifted right by their lead-exponent
+// difference and rounded to nearest even — PRECISION IS LOST HERE when that difference
+// exceeds bits − (significand bits); a value below half a block ulp becomes 0. Signs kept
+// (two's complement). All three zero: q = 0, exp = 0. Rounding never overflows (a carry of
+// the largest to 2^bits still fits int64).
+Block3 align_block(const FxFloat v[3], int bits);
+
+// Per-triangle interpolation setup: the denominator plane and one numerator plane per varying.
+struct InterpSetup {
+  Plane den;                 // D = Σ E_k·R_k (> 0 inside), value D·2^den_exp
+  int den_exp = 0;
+  Plane num[kMaxVaryings];   // N_m = Σ E_k·V_{m,k}, value N_m·2^num_exp[m]
+  int num_exp[kMaxVaryings] = {};
+  int n = 0;                 // number of varyings
+};
+
+// Contract: builds the planes of stage 7 for `tri` (perspective: D from rw; affine: D = 2A,
+// i.e. R_k = 1). Uses raster.interp_block_bits. Exact apart from align_block's rounding.
+void interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const TriSetup& t,
+                  InterpSetup& out);
+
+// The maximum depth code (buffer clear value): 2^depth_bits − 1.
+inline uint32_t depth_max_code(const RasterConfig& c) { return (uint32_t)((1u << c.depth_bits()) - 1); }
+
+struct DepthSetup {
+  Plane z;     // Σ E_k·z_k·(2^depth_bits − 1)
+  i128 den = 0;  // 2A · 2^z_frac_bits (> 0)
+};
+// Contract: exact; needs z_k ≤ 2^z_frac_bits (setup rejects larger as RejectedRange).
+DepthSetup depth_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup& t);
+
+// Field widths of the planes (the bounds validate() checks against i128):
+// Σ E_k·Q_k over three vertices with |E_k| < 2^(edge_value_bits−1), |Q_k| < 2^(qbits−1), plus 2
+// bits for the three-term sum.
+inline int interp_plane_bits(const RasterConfig& r) { return edge_value_bits(r) + r.interp_block_bits + 1 + 2; }
+inline int depth_plane_bits(const RasterConfig& r) { return edge_value_bits(r) + r.z_frac_bits + 1 + r.depth_bits() + 2; }
+// 2A·2^z_frac_bits: unsigned, 2A < 2^(edge_value_bits−1).
+inline int depth_den_bits(const RasterConfig& r) { return edge_value_bits(r) - 1 + r.z_frac_bits; }
+
+template <class V>
+void visit_plane(V& v, const std::string& name, Plane& p, int bits) {
+  v(name + "_c", p.c, bits, true);
+  v(name + "_dx", p.dx, bits, true);
+  v(name + "_dy", p.dy, bits, true);
+}
+
+// ---- the stage ------------------------------------------------------------------------------
+
+// Stage 5 output: everything the later stages need of one triangle — the edge equations and
+// candidate rectangle (traversal), the z plane (depth), the 1/w and v/w planes (interpolators).
+// The planes are built from the same snapped positions as the edges today; they are separate
+// members so that they can get their own (higher-precision) positions without touching coverage.
+struct TriangleEquations {
+  uint32_t prim = 0;
+  TriSetup edges;
+  DepthSetup depth;
+  InterpSetup interp;  // interp.n = 0 when the chain computes no varyings
+
+  template <class V>
+  void visit(V& v, const RecordShape& s) {
+    const RasterConfig& r = s.cfg.raster;
+    v("prim", prim, kPrimIdBits, false);
+    for (int k = 0; k < 3; ++k) {
+      const std::string p = field_prefix("e", k);
+      v(p + "a", edges.e[k].a, edge_coef_bits(r), true);
+      v(p + "b", edges.e[k].b, edge_coef_bits(r), true);
+      v(p + "c", edges.e[k].c, edge_value_bits(r), true);
+      v(p + "bias", edges.e[k].bias, 1, true);  // 0 or −1
+    }
+    v("area2", edges.area2, edge_value_bits(r), true);
+    v("front", edges.front, 1, false);
+    v("x0", edges.x0, r.window_int_bits, true);
+    v("x1", edges.x1, r.window_int_bits, true);
+    v("y0", edges.y0, r.window_int_bits, true);
+    v("y1", edges.y1, r.window_int_bits, true);
+    visit_plane(v, "z", depth.z, depth_plane_bits(r));
+    v("z_den", depth.den, depth_den_bits(r), false);
+    visit_plane(v, "den", interp.den, interp_plane_bits(r));
+    v("den_exp", interp.den_exp, fx_exp_field_bits(s.cfg), true);
+    for (int m = 0; m < s.num_varyings; ++m) {
+      const std::string p = "num" + std::to_string(m);
+      visit_plane(v, p, interp.num[m], interp_plane_bits(r));
+      v(p + "_exp", interp.num_exp[m], fx_exp_field_bits(s.cfg), true);
+    }
+  }
+};
+
+class SetupStage {
+ public:
+  static constexpr const char* kName = "setup";
+  using In = SetupTriangle;
+  using Out = TriangleEquations;
+
+  // with_varyings false: the 1/w and v/w planes are not built (nothing downstream divides).
+  SetupStage(const Config& cfg, const DrawState& st, bool with_varyings = true)
+      : cfg_(cfg), st_(st), varyings_(with_varyings && st.num_varyings > 0) {}
+
+  // 1 → 0..1: the triangle's equations, or why it is not drawn.
+  template <class Emit>
+  SetupOutcome step(const In& in, Emit&& emit) {
+    const SetupOutcome o = setup_triangle(cfg_, st_, in, out_.edges);
+    if (o != SetupOutcome::Ok) return o;
+    out_.prim = in.prim;
+    out_.depth = depth_setup(cfg_, in, out_.edges);
+    if (varyings_) interp_setup(cfg_, st_, in, out_.edges, out_.interp);
+    else out_.interp.n = 0;
+    emit(static_cast<const Out&>(out_));
+    return o;
+  }
+
+  // Planned RTL: 6 coordinate products for the edge constants and area, the bounding box
+  // compares; per plane 9 products E-coefficient × vertex value.
+  static StageCost cost(const Config& cfg);
+
+ private:
+  const Config& cfg_;
+  const DrawState& st_;
+  bool varyings_;
+  TriangleEquations out_;
+};
 
 }  // namespace fxr

@@ -86,4 +86,50 @@ void traverse(const TriSetup& t, SpanFn&& span) {
   }
 }
 
+// ---- the stage ------------------------------------------------------------------------------
+
+// Stage 6 output: the covered pixels x0 ≤ i ≤ x1 of row y of one triangle (pixel indices are
+// signed raster.window_int_bits).
+struct Span {
+  uint32_t prim = 0;
+  int32_t y = 0, x0 = 0, x1 = -1;
+
+  template <class V>
+  void visit(V& v, const RecordShape& s) {
+    const int b = s.cfg.raster.window_int_bits;
+    v("prim", prim, kPrimIdBits, false);
+    v("y", y, b, true);
+    v("x0", x0, b, true);
+    v("x1", x1, b, true);
+  }
+};
+
+class TraverseStage {
+ public:
+  static constexpr const char* kName = "traverse";
+  using In = TriangleEquations;
+  using Out = Span;
+
+  TraverseStage(const Config&, const DrawState&) {}
+
+  // 1 → 0..n spans, rows bottom to top (never drops a triangle: a set-up triangle whose
+  // candidate rectangle holds no covered centre simply emits no span).
+  template <class Emit>
+  void step(const In& in, Emit&& emit) {
+    span_.prim = in.prim;
+    traverse(in.edges, [&](int j, int xb, int xe) {
+      span_.y = j;
+      span_.x0 = xb;
+      span_.x1 = xe;
+      emit(static_cast<const Out&>(span_));
+    });
+  }
+
+  // Planned RTL: three edge steppers (edge_value_bits adders), one row per clock.
+  static StageCost cost(const Config& cfg);
+
+ private:
+  Span span_;
+};
+
 }  // namespace fxr

@@ -98,13 +98,17 @@ FxFloat round_prod(const FxProd& p, int bits) {
 }
 
 ProjectStatus project_vertex(const Config& cfg, const DrawState& st, const ClipVtx& v, SetupVertex& out) {
-  const RasterConfig& rc = cfg.raster;
   // Stage 3: the reciprocal unit. w is exact at in_sig_bits (float32: 24 bits; the clipper
   // rounds its w to exactly this width), so this normalisation never rounds.
   const FxFloat w = normalize_fx(v.p[3], cfg.recip.in_sig_bits, Round::HalfEven);
   const RecipResult rr = recip(cfg.recip, w);
   if (rr.div_by_zero || rr.exp_overflow) return ProjectStatus::RecipError;
-  const FxFloat& r = rr.value;
+  return snap_vertex(cfg, st, v, rr.value, out);
+}
+
+ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx& v, const FxFloat& r,
+                          SetupVertex& out) {
+  const RasterConfig& rc = cfg.raster;
   // Perspective divide as exact products (no rounding here).
   const FxProd xn = mul_exact(v.p[0], r), yn = mul_exact(v.p[1], r), zn = mul_exact(v.p[2], r);
   // Stage 4: viewport + snap, one RNE each.
@@ -125,6 +129,23 @@ ProjectStatus project_vertex(const Config& cfg, const DrawState& st, const ClipV
   }
   for (int k = st.num_varyings; k < kMaxVaryings; ++k) out.vw[k] = FxFloat{};
   return ProjectStatus::Ok;
+}
+
+StageCost ViewportStage::cost(const Config& cfg) {
+  const RasterConfig& r = cfg.raster;
+  const int sb = clip_vertex_sig_bits(cfg), rb = cfg.recip.out_sig_bits;
+  StageCost c;
+  // Per vertex: x, y, z and every varying times 1/w, then x and y times the viewport size.
+  for (int v = 0; v < 3; ++v) {
+    for (int k = 0; k < 3 + kMaxVaryings; ++k) c.add_mult(sb, rb);
+    c.add_mult(sb + rb, r.window_int_bits + 1);
+    c.add_mult(sb + rb, r.window_int_bits + 1);
+  }
+  c.latency = 3;  // products, scale + offset, rounding (estimate until rtl/ has the stage)
+  c.ii = 1;
+  c.adder_bits = 3 * (int64_t)(3 + kMaxVaryings) * (sb + rb);
+  c.ff_bits = c.latency * record_bits<SetupTriangle>(cfg, kMaxVaryings);
+  return c;
 }
 
 }  // namespace fxr

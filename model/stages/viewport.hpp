@@ -1,5 +1,6 @@
-// model/stages/viewport.hpp — stages 3 and 4: reciprocal unit + perspective divide, viewport transform +
-// snapping. From a clipped vertex (exact dyadic x_c, y_c, z_c, w_c, varyings) to a SetupVertex.
+// model/stages/viewport.hpp — stage 4: perspective divide (exact products with stage 3's 1/w),
+// viewport transform and snapping. From a clipped vertex (exact dyadic x_c, y_c, z_c, w_c,
+// varyings) and its 1/w to a SetupVertex. (project_vertex: stages 3 + 4 for one vertex.)
 //
 // Which snapping the model is (ANCHORS: float32 divide + float32 viewport formula differs from
 // exact rounding for ~3 % of vertices at 4096 px): the model snaps the EXACT value of
@@ -10,9 +11,12 @@
 
 #include <cstdint>
 
-#include "model/stages/clip.hpp"
 #include "model/config/config.hpp"
+#include "model/stages/clip.hpp"
+#include "model/stages/recip_stage.hpp"
+#include "model/stages/setup.hpp"
 #include "model/unit/io.hpp"
+#include "model/unit/stage.hpp"
 
 namespace fxr {
 
@@ -58,5 +62,45 @@ enum class ProjectStatus : uint8_t { Ok, RecipError, Range };
 //   RecipError: the unit flagged a zero divisor or an exponent overflow. Range: a snapped
 //   coordinate outside the window format. `out` is complete only for Ok.
 ProjectStatus project_vertex(const Config& cfg, const DrawState& st, const ClipVtx& v, SetupVertex& out);
+
+// Contract: stage 4 for one vertex with r = 1/w_c from the reciprocal unit (the part of
+// project_vertex after the reciprocal): Ok or Range. `out` is complete only for Ok.
+ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx& v, const FxFloat& r,
+                          SetupVertex& out);
+
+// ---- the stage ------------------------------------------------------------------------------
+
+enum class ViewportOutcome : uint8_t {
+  Emitted,
+  RejectedRange,  // a snapped coordinate outside the window format (not reachable inside the
+                  // guard band, see kGuardMarginPx)
+};
+
+class ViewportStage {
+ public:
+  static constexpr const char* kName = "viewport";
+  using In = RecipTriangle;
+  using Out = SetupTriangle;
+
+  ViewportStage(const Config& cfg, const DrawState& st) : cfg_(cfg), st_(st) {}
+
+  // 1 → 0..1: the snapped triangle.
+  template <class Emit>
+  ViewportOutcome step(const In& in, Emit&& emit) {
+    out_.prim = in.prim;
+    for (int i = 0; i < 3; ++i)
+      if (snap_vertex(cfg_, st_, in.v[i], in.r[i], out_.v[i]) != ProjectStatus::Ok) return ViewportOutcome::RejectedRange;
+    emit(static_cast<const Out&>(out_));
+    return ViewportOutcome::Emitted;
+  }
+
+  // Planned RTL: per vertex 3 + num_varyings products with 1/w, the viewport scale, one RNE each.
+  static StageCost cost(const Config& cfg);
+
+ private:
+  const Config& cfg_;
+  const DrawState& st_;
+  SetupTriangle out_;
+};
 
 }  // namespace fxr

@@ -1,5 +1,6 @@
 // model/unit/backend.hpp — stages 5–10 on snapped triangles: setup, traversal, interpolators, depth,
-// divider, output. run_raster_unit (raster_unit.hpp) is geometry() followed by these.
+// divider, output (the FragmentChain of model/unit/chain.hpp). run_raster_unit (raster_unit.hpp)
+// is geometry() followed by these.
 #pragma once
 
 #include "model/config/config.hpp"
@@ -33,9 +34,21 @@ class FragmentSink {
   virtual void emit(const Fragment& f) = 0;
 };
 
+// Holds every fragment: appends them to a vector (FrameOutput::fragments in run_raster_unit).
+class KeepFragments final : public FragmentSink {
+ public:
+  explicit KeepFragments(std::vector<Fragment>& out) : out_(out) {}
+  void emit(const Fragment& f) override { out_.push_back(f); }
+
+ private:
+  std::vector<Fragment>& out_;
+};
+
 // Contract: as raster_triangle, but passing fragments go to `sink` (nullptr: none, and the
 // varyings are not computed) instead of f.fragments. A streaming consumer (images, vectors)
-// avoids holding a frame's fragments (sizeof(Fragment) bytes each) in memory.
+// avoids holding a frame's fragments (sizeof(Fragment) bytes each) in memory. (Convenience entry
+// point: it sets the stages up per call; FragmentChain in model/unit/chain.hpp sets them up once
+// per frame.)
 SetupOutcome raster_triangle_to(const Config& cfg, const DrawState& st, const SetupTriangle& tri, FrameOutput& f,
                                 FragmentSink* sink);
 

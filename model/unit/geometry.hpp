@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "model/config/config.hpp"
+#include "model/stages/setup.hpp"
 #include "model/unit/io.hpp"
 
 namespace fxr {
@@ -22,7 +23,9 @@ enum class GeomOutcome : uint8_t {
 // Contract: appends the snapped triangles of `tri` to `out` (prim index stamped on each) and
 // updates the geometry counters of `stats` (trivial accept, clipped, vertices created,
 // triangles out). The caller counts prims_in and the final disposition. Pure function of its
-// inputs: a shared edge of two input triangles is clipped identically in both.
+// inputs: a shared edge of two input triangles is clipped identically in both. (Convenience
+// entry point: it sets the stages up per call; GeometryChain in model/unit/chain.hpp sets them up
+// once per frame.)
 GeomOutcome geometry(const Config& cfg, const DrawState& st, const ClipTriangle& tri, uint32_t prim,
                      std::vector<SetupTriangle>& out, RasterStats& stats);
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "model/arith/fxfloat.hpp"
+#include "model/unit/record.hpp"
 
 namespace fxr {
 
@@ -49,28 +50,6 @@ struct DrawState {
 
 namespace fxr {
 
-// ---- the record between the geometry stages (1–4) and the raster stages (5–10) --------------
-//
-// A vertex after input conversion, clipping, the reciprocal unit, the perspective divide and
-// viewport snapping. Formats (named in the configuration, see docs/pipeline.md):
-//   x, y: window coordinates in subpixel units (raster.subpixel_bits fraction bits), snapped
-//         with round-to-nearest-even; y up, pixel centres at (i + ½)·2^subpixel_bits.
-//   z:    z_c / w_c ∈ [0, 1] as an unsigned fraction with raster.z_frac_bits bits.
-//   rw:   1/w_c from the reciprocal unit, a normalised FxFloat (recip.out_sig_bits significand).
-//   vw:   v_k · (1/w_c) per varying, a normalised FxFloat (raster.varying_sig_bits), or, in the
-//         affine mode, v_k itself.
-struct SetupVertex {
-  int64_t x = 0, y = 0;
-  uint64_t z = 0;
-  FxFloat rw;
-  FxFloat vw[kMaxVaryings];
-};
-
-struct SetupTriangle {
-  SetupVertex v[3];
-  uint32_t prim = 0;  // index of the input primitive it came from
-};
-
 // One fragment leaving the unit. depth is the D16 / D24 unorm code; var[k] is the
 // perspective-correct varying as a normalised FxFloat (raster.varying_out_sig_bits).
 struct Fragment {
@@ -78,6 +57,17 @@ struct Fragment {
   uint32_t depth = 0;
   uint32_t prim = 0;
   FxFloat var[kMaxVaryings];
+
+  // Widths: pixel indices are signed raster.window_int_bits, depth codes raster.depth_bits().
+  template <class V>
+  void visit(V& v, const RecordShape& s) {
+    const RasterConfig& r = s.cfg.raster;
+    v("prim", prim, kPrimIdBits, false);
+    v("x", x, r.window_int_bits, true);
+    v("y", y, r.window_int_bits, true);
+    v("depth", depth, r.depth_bits(), false);
+    for (int k = 0; k < s.num_varyings; ++k) visit_fx(v, "var" + std::to_string(k), var[k], r.varying_out_sig_bits, s);
+  }
 };
 
 // Every input primitive ends in exactly one of: drawn, culled_* or rejected_*

@@ -1,0 +1,240 @@
+// model/unit/chain.hpp — the raster unit as the chain of its stage steps, with a tap at every
+// stage boundary (docs/architecture.md: the stage table; docs/pipeline.md: the stages).
+//
+//   InputTriangle → convert → ExactTriangle → clip → ClippedTriangle (0..n) → recip →
+//   RecipTriangle → viewport → SetupTriangle → setup → TriangleEquations → traverse → Span (n)
+//   → interp → PlaneSample (n) → depth → PlaneSample (0..1) → divide → Fragment → FragmentSink
+//
+// Taps. A chain is a template over a Taps type with two member templates
+//     template <class S> void in(const typename S::In&);    before stage S steps on a record
+//     template <class S> void out(const typename S::Out&);  for every record S emits
+// called depth-first in stream order: every out<S> follows the in<S> of the record it came
+// from, before the next in<S>, so a tap can pair outputs with inputs (the vector dump of
+// model/vectors/scene_dump.hpp does). NoTaps has empty inline members: the compiler removes
+// them and the chain is the fused streaming loop (measured in docs/pipeline.md, stage 10).
+// The records are valid only during the call.
+//
+// Geometry (stages 1–4) runs one input primitive to completion before setup sees any of its
+// triangles: a primitive whose clipped piece fails in a later geometry stage is rejected whole
+// (RejectedRange), as the unit's statistics require.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/config/config.hpp"
+#include "model/stages/clip.hpp"
+#include "model/stages/depth.hpp"
+#include "model/stages/divide.hpp"
+#include "model/stages/input.hpp"
+#include "model/stages/interp.hpp"
+#include "model/stages/recip_stage.hpp"
+#include "model/stages/setup.hpp"
+#include "model/stages/traverse.hpp"
+#include "model/stages/viewport.hpp"
+#include "model/unit/backend.hpp"
+#include "model/unit/geometry.hpp"
+#include "model/unit/io.hpp"
+#include "model/unit/raster_unit.hpp"
+
+namespace fxr {
+
+// No observer: every tap compiles to nothing.
+struct NoTaps {
+  template <class S>
+  void in(const typename S::In&) {}
+  template <class S>
+  void out(const typename S::Out&) {}
+};
+
+// Stages 1–4: one input primitive to 0..n snapped triangles.
+template <class Taps = NoTaps>
+class GeometryChain {
+ public:
+  GeometryChain(const Config& cfg, const DrawState& st, Taps& taps)
+      : taps_(taps), convert_(cfg, st), clip_(cfg, st), recip_(cfg, st), viewport_(cfg, st) {}
+
+  // Contract: as fxr::geometry() (model/unit/geometry.hpp): appends the snapped triangles of
+  // `in` to `out`, updates the geometry counters of `s`.
+  GeomOutcome run(const InputTriangle& in, std::vector<SetupTriangle>& out, RasterStats& s) {
+    taps_.template in<ConvertStage>(in);
+    const ExactTriangle* ex = nullptr;
+    switch (convert_.step(in, [&](const ExactTriangle& e) {
+      taps_.template out<ConvertStage>(e);
+      ex = &e;
+    })) {
+      case ConvertOutcome::Emitted: break;
+      case ConvertOutcome::RejectedNaN: return GeomOutcome::RejectedNaN;
+      case ConvertOutcome::RejectedInf: return GeomOutcome::RejectedInf;
+      case ConvertOutcome::RejectedRange: return GeomOutcome::RejectedRange;
+    }
+    taps_.template in<ClipStage>(*ex);
+    const size_t first = out.size();
+    bool failed = false;
+    uint64_t pieces = 0;
+    const ClipReport r = clip_.step(*ex, [&](const ClippedTriangle& c) {
+      taps_.template out<ClipStage>(c);
+      ++pieces;
+      if (failed) return;  // the primitive is rejected whole; its other pieces go no further
+      taps_.template in<RecipStage>(c);
+      const RecipOutcome ro = recip_.step(c, [&](const RecipTriangle& rt) {
+        taps_.template out<RecipStage>(rt);
+        taps_.template in<ViewportStage>(rt);
+        const ViewportOutcome vo = viewport_.step(rt, [&](const SetupTriangle& t) {
+          taps_.template out<ViewportStage>(t);
+          out.push_back(t);
+        });
+        if (vo != ViewportOutcome::Emitted) failed = true;
+      });
+      if (ro != RecipOutcome::Emitted) failed = true;
+    });
+    switch (r.outcome) {
+      case ClipOutcome::Accepted: ++s.prims_trivial_accept; break;
+      case ClipOutcome::Clipped:
+      case ClipOutcome::ClippedAway:
+      case ClipOutcome::RejectedOverflow:
+        ++s.prims_clipped;
+        s.clip_vertices_created += (uint64_t)r.vertices_created;
+        break;
+      case ClipOutcome::CulledOutside:
+      case ClipOutcome::RejectedViewport: break;
+    }
+    switch (r.outcome) {
+      case ClipOutcome::CulledOutside:
+      case ClipOutcome::ClippedAway: return GeomOutcome::CulledOutside;
+      case ClipOutcome::RejectedViewport:
+      case ClipOutcome::RejectedOverflow: return GeomOutcome::RejectedRange;
+      case ClipOutcome::Clipped: s.clip_triangles_out += pieces; break;
+      case ClipOutcome::Accepted: break;
+    }
+    if (failed) {
+      out.resize(first);
+      return GeomOutcome::RejectedRange;
+    }
+    return GeomOutcome::Emitted;
+  }
+
+ private:
+  Taps& taps_;
+  ConvertStage convert_;
+  ClipStage clip_;
+  RecipStage recip_;
+  ViewportStage viewport_;
+};
+
+// Stages 5–10: one snapped triangle to fragments, against the depth buffer of a frame.
+template <class Taps = NoTaps>
+class FragmentChain {
+ public:
+  // `f` must be prepared (frame_begin) before: the chain tests against f.depth. sink nullptr:
+  // fragments are counted and depth-tested but not divided nor emitted (no varyings computed).
+  FragmentChain(const Config& cfg, const DrawState& st, FrameOutput& f, FragmentSink* sink, Taps& taps)
+      : taps_(taps),
+        stats_(f.stats),
+        sink_(sink),
+        setup_(cfg, st, sink != nullptr),
+        traverse_(cfg, st),
+        interp_(cfg, st, sink != nullptr),
+        depth_(cfg, st, DepthBufferView{f.depth.data(), f.width, st.viewport_x, st.viewport_y}),
+        divide_(cfg, st, sink != nullptr) {}
+
+  // Contract: as fxr::raster_triangle_to() (model/unit/backend.hpp).
+  SetupOutcome run(const SetupTriangle& tri) {
+    taps_.template in<SetupStage>(tri);
+    return setup_.step(tri, [&](const TriangleEquations& eq) {
+      taps_.template out<SetupStage>(eq);
+      taps_.template in<TraverseStage>(eq);
+      traverse_.step(eq, [&](const Span& sp) {
+        taps_.template out<TraverseStage>(sp);
+        stats_.fragments_generated += (uint64_t)(sp.x1 - sp.x0 + 1);
+        taps_.template in<InterpStage>(sp);
+        interp_.step(eq, sp, [&](const PlaneSample& ps) {
+          taps_.template out<InterpStage>(ps);
+          taps_.template in<DepthStage>(ps);
+          const bool pass = depth_.step(ps, [&](const PlaneSample& p) {
+            taps_.template out<DepthStage>(p);
+            if (!sink_) return;
+            taps_.template in<DivideStage>(p);
+            divide_.step(p, [&](const Fragment& fr) {
+              taps_.template out<DivideStage>(fr);
+              sink_->emit(fr);
+            });
+          });
+          if (pass) ++stats_.fragments_depth_pass;
+          else ++stats_.fragments_depth_fail;
+        });
+      });
+    });
+  }
+
+ private:
+  Taps& taps_;
+  RasterStats& stats_;
+  FragmentSink* sink_;
+  SetupStage setup_;
+  TraverseStage traverse_;
+  InterpStage interp_;
+  DepthStage depth_;
+  DivideStage divide_;
+};
+
+// Stages 1–10 with the primitive accounting of run_raster_unit.
+template <class Taps = NoTaps>
+class UnitChain {
+ public:
+  UnitChain(const Config& cfg, const DrawState& st, FrameOutput& f, FragmentSink* sink, Taps& taps)
+      : stats_(f.stats), geometry_(cfg, st, taps), fragments_(cfg, st, f, sink, taps) {}
+
+  // Contract: one input primitive through every stage. It counts once in the statistics: as
+  // drawn if any of its triangles was rasterised, else by the first reason in the order
+  // range > backface > no samples > zero area (all pieces of one primitive share its facing).
+  void draw(const ClipTriangle& tri, uint32_t prim) {
+    RasterStats& s = stats_;
+    ++s.prims_in;
+    in_.prim = prim;
+    in_.tri = tri;
+    pieces_.clear();
+    switch (geometry_.run(in_, pieces_, s)) {
+      case GeomOutcome::CulledOutside: ++s.prims_culled_outside; return;
+      case GeomOutcome::RejectedNaN: ++s.prims_rejected_nan; return;
+      case GeomOutcome::RejectedInf: ++s.prims_rejected_inf; return;
+      case GeomOutcome::RejectedRange: ++s.prims_rejected_range; return;
+      case GeomOutcome::Emitted: break;
+    }
+    bool drawn = false, range = false, back = false, nosamp = false;
+    for (const SetupTriangle& t : pieces_) {
+      switch (fragments_.run(t)) {
+        case SetupOutcome::Ok: drawn = true; break;
+        case SetupOutcome::RejectedRange: range = true; break;
+        case SetupOutcome::CulledBackface: back = true; break;
+        case SetupOutcome::CulledNoSamples: nosamp = true; break;
+        case SetupOutcome::CulledZeroArea: break;
+      }
+    }
+    if (drawn) ++s.prims_drawn;
+    else if (range) ++s.prims_rejected_range;
+    else if (back) ++s.prims_culled_backface;
+    else if (nosamp) ++s.prims_culled_no_samples;
+    else if (pieces_.empty()) ++s.prims_culled_outside;  // geometry emitted nothing
+    else ++s.prims_culled_zero_area;
+  }
+
+ private:
+  RasterStats& stats_;
+  GeometryChain<Taps> geometry_;
+  FragmentChain<Taps> fragments_;
+  InputTriangle in_;
+  std::vector<SetupTriangle> pieces_;
+};
+
+// Contract: run_raster_unit with fragments streamed to `sink` (nullptr: none kept, no
+// varyings) and `taps` observing every stage boundary. Prepares `f` (frame_begin).
+template <class Taps = NoTaps>
+void run_raster_unit_to(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
+                        FrameOutput& f, FragmentSink* sink, Taps& taps) {
+  frame_begin(cfg, st, f);
+  UnitChain<Taps> chain(cfg, st, f, sink, taps);
+  for (size_t p = 0; p < tris.size(); ++p) chain.draw(tris[p], (uint32_t)p);
+}
+
+}  // namespace fxr
