@@ -12,6 +12,7 @@
 #include "model/config/json_input.hpp"
 #include "model/config/validate.hpp"
 #include "model/stages/recip.hpp"
+#include "model/stages/texaddr.hpp"
 
 namespace fxr {
 
@@ -732,6 +733,147 @@ class RecipVectors : public VectorModel {
   VecLayout lay_;
 };
 
+// ---- texaddr: the texture address unit (model/stages/texaddr.hpp, rtl/fxr_texaddr.sv) ---------------
+// Fields: filter [1] (0 nearest, 1 bilinear), wrap [2] (repeat, mirrored_repeat, clamp_to_edge,
+// clamp_to_border: the order of tex_addr.wrap), then per coordinate c ∈ {u, v}: c_neg, c_exp
+// [exp_bits] (signed exponent of the significand's lsb), c_sig [sig_bits] (msb set, or 0);
+// width, height [size_bits + 1] in [1, 2^size_bits]. Outputs per axis a ∈ {s (u, width), t (v,
+// height)}: a_i0, a_i1 [size_bits], a_b0, a_b1 (border flags), a_w [weight_frac_bits].
+// Filter and wrap are inputs (texture state), the configuration's choices the defaults of
+// `fxraster render`. Model: fxr::texaddr with the row's filter and wrap.
+
+constexpr int kTexFilterBits = 1;  // TexFilter: 2 choices
+constexpr int kTexWrapBits = 2;    // TexWrap: 4 choices
+
+class TexaddrVectors : public VectorModel {
+ public:
+  explicit TexaddrVectors(const Config& c) : c_(c.tex_addr) {
+    n_ = c_.sig_bits;
+    eb_ = c_.exp_bits;
+    zb_ = c_.size_bits;
+    fb_ = c_.weight_frac_bits;
+    emin_ = -(1 << (eb_ - 1));
+    emax_ = (1 << (eb_ - 1)) - 1;
+    const std::string n = std::to_string(n_), e = std::to_string(eb_), z = std::to_string(zb_);
+    std::vector<VecField> f = {
+        {"filter", VecDir::In, kTexFilterBits, false, "0 nearest, 1 bilinear"},
+        {"wrap", VecDir::In, kTexWrapBits, false, "0 repeat, 1 mirrored_repeat, 2 clamp_to_edge, 3 clamp_to_border"}};
+    for (const char* a : {"u", "v"}) {
+      const std::string p = a;
+      f.push_back({p + "_neg", VecDir::In, 1, false, "sign of " + p});
+      f.push_back({p + "_exp", VecDir::In, eb_, true, "signed exponent of the lsb of " + p + "_sig, " + e + " bits"});
+      f.push_back({p + "_sig", VecDir::In, n_, false,
+                   "unsigned significand, " + n + " bits, msb set (0 for zero): " + p + " = (-1)^neg * sig * 2^exp"});
+    }
+    f.push_back({"width", VecDir::In, zb_ + 1, false, "texture width in [1, 2^" + z + "]"});
+    f.push_back({"height", VecDir::In, zb_ + 1, false, "texture height in [1, 2^" + z + "]"});
+    for (const char* a : {"s", "t"}) {
+      const std::string p = a;
+      f.push_back({p + "_i0", VecDir::Out, zb_, false, "texel index (nearest: the texel; bilinear: floor(c*size - 1/2)), wrapped"});
+      f.push_back({p + "_i1", VecDir::Out, zb_, false, "second texel index (i0 + 1 wrapped; nearest: = i0)"});
+      f.push_back({p + "_b0", VecDir::Out, 1, false, "clamp_to_border: i0 outside the texture"});
+      f.push_back({p + "_b1", VecDir::Out, 1, false, "clamp_to_border: i1 outside the texture"});
+      f.push_back({p + "_w", VecDir::Out, fb_, false,
+                   "weight of i1, " + std::to_string(fb_) + " fraction bits, RNE (nearest: 0)"});
+    }
+    lay_ = VecLayout(f);
+  }
+  const VecLayout& layout() const override { return lay_; }
+  nlohmann::json config_json() const override { return unit_config_json("tex_addr", to_json_params(c_)); }
+  void compute(VecRow& r) const override {
+    TexAddrConfig c = c_;
+    c.filter = (TexFilter)r[0];
+    c.wrap = (TexWrap)r[1];
+    TexAddrIn in;
+    in.u = coord(r, 2);
+    in.v = coord(r, 5);
+    in.width = (uint32_t)r[8];
+    in.height = (uint32_t)r[9];
+    const TexAddrOut o = texaddr(c, in);
+    size_t k = 10;
+    for (const TexAxis& a : {o.s, o.t}) {
+      r[k++] = a.i0;
+      r[k++] = a.i1;
+      r[k++] = a.border0;
+      r[k++] = a.border1;
+      r[k++] = a.weight;
+    }
+  }
+  std::vector<VecRow> directed() const override {
+    std::vector<VecRow> v;
+    const uint64_t one = bit(n_ - 1), max = vec_mask(n_);
+    const int l = -(n_ - 1);  // exponent of the lsb for a value in [1, 2)
+    struct U {
+      bool neg;
+      int exp;
+      uint64_t sig;
+    };
+    // 0, −0, ±1, ±½, just below 1, just below 0, ±2.25, tiny and huge magnitudes.
+    const std::vector<U> us = {{false, 0, 0},       {true, 0, 0},          {false, l, one},     {true, l, one},
+                               {false, l - 1, one}, {true, l - 1, one},    {false, l - 1, max}, {true, l - 30, max},
+                               {false, l + 1, one + (one >> 3)}, {true, l + 1, one + (one >> 3)},
+                               {false, emin_, max}, {true, emin_, one},    {false, emax_, max}, {true, emax_, one + 1},
+                               {false, 0, one + 1}, {true, 1, max}};
+    const uint64_t zmax = bit(zb_);
+    const std::vector<uint64_t> sizes = {1, 2, 3, zmax, zmax - 1 > 0 ? zmax - 1 : 1};
+    for (uint64_t fil = 0; fil < 2; ++fil)
+      for (uint64_t w = 0; w < 4; ++w)
+        for (size_t i = 0; i < us.size(); ++i)
+          for (uint64_t sz : sizes) {
+            const U& a = us[i];
+            const U& b = us[(i + 5) % us.size()];
+            VecRow r = blank();
+            r[0] = fil;
+            r[1] = w;
+            set_coord(r, 2, a.neg, a.exp, a.sig);
+            set_coord(r, 5, b.neg, b.exp, b.sig);
+            r[8] = sz;
+            r[9] = sizes[(sz + i) % sizes.size()];
+            v.push_back(r);
+          }
+    return v;
+  }
+  // Random: filter and wrap uniform; per coordinate 1 in 32 zero, 1 in 32 an exponent uniform over
+  // the whole field, the others a leading one in [2^−12, 2^4); sizes: 1 in 4 a power of two,
+  // 1 in 4 at most 8, else uniform in [1, 2^size_bits].
+  void random(std::mt19937_64& rng, VecRow& r) const override {
+    r[0] = rng() & 1;
+    r[1] = rng() & 3;
+    for (size_t k : {2, 5}) {
+      const uint64_t sel = rng() & 31;
+      const bool neg = rng() & 1;
+      int e = (int)random_in(rng, -12, 3) - (n_ - 1);
+      uint64_t sig = random_sig(rng, n_);
+      if (sel == 0) sig = 0;
+      if (sel == 1) e = (int)random_in(rng, emin_, emax_);
+      set_coord(r, k, neg, std::max(emin_, std::min(emax_, e)), sig);
+    }
+    for (size_t k : {8, 9}) {
+      const uint64_t sel = rng() & 3;
+      if (sel == 0) r[k] = bit((int)random_in(rng, 0, zb_));
+      else if (sel == 1) r[k] = (uint64_t)random_in(rng, 1, std::min<int64_t>(8, (int64_t)bit(zb_)));
+      else r[k] = (uint64_t)random_in(rng, 1, (int64_t)bit(zb_));
+    }
+  }
+
+ private:
+  FxFloat coord(const VecRow& r, size_t k) const {
+    FxFloat x;
+    x.neg = r[k] != 0;
+    x.exp = (int)vec_unpack_signed(r[k + 1], eb_);
+    x.sig = r[k + 2];
+    return x;
+  }
+  void set_coord(VecRow& r, size_t k, bool neg, int exp, uint64_t sig) const {
+    r[k] = neg;
+    r[k + 1] = vec_pack(std::max(emin_, std::min(emax_, exp)), eb_);
+    r[k + 2] = sig;
+  }
+  TexAddrConfig c_;
+  int n_, eb_, zb_, fb_, emin_, emax_;
+  VecLayout lay_;
+};
+
 }  // namespace
 
 std::vector<VectorUnitInfo> builtin_vector_units() {
@@ -742,6 +884,9 @@ std::vector<VectorUnitInfo> builtin_vector_units() {
       {"div", "fxr_div", "per-pixel significand divider (div_sig)",
        [](const Config& c) { return std::make_unique<DivVectors>(c); },
        [](const Config& c) { return div_cost(c.div); }},
+      {"texaddr", "fxr_texaddr", "texture address unit (fxr::texaddr): texel indices, border flags, bilinear weights",
+       [](const Config& c) { return std::make_unique<TexaddrVectors>(c); },
+       [](const Config& c) { return texaddr_cost(c.tex_addr); }},
   };
 }
 
