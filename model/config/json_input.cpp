@@ -134,7 +134,8 @@ int64_t json_int(const json& j, int64_t lo, int64_t hi, const std::string& what)
   if (!j.is_number_integer()) throw ConfigError(what + ": expected an integer in " + range + ", got " + json_typed_excerpt(j));
   if (j.is_number_unsigned()) {
     const uint64_t u = j.get<uint64_t>();
-    if (hi < 0 || u > (uint64_t)hi) throw ConfigError(what + ": " + std::to_string(u) + " is outside " + range);
+    if (hi < 0 || u > (uint64_t)hi || (lo > 0 && u < (uint64_t)lo))
+      throw ConfigError(what + ": " + std::to_string(u) + " is outside " + range);
     return (int64_t)u;
   }
   const int64_t v = j.get<int64_t>();
