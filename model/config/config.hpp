@@ -15,6 +15,7 @@
 #include "model/arith/div.hpp"
 #include "model/config/param.hpp"
 #include "model/config/raster_config.hpp"
+#include "model/stages/line.hpp"
 #include "model/stages/recip.hpp"
 #include "model/stages/texaddr.hpp"
 
@@ -30,6 +31,7 @@ struct Config {
   DivConfig div;
   RecipConfig recip;
   TexAddrConfig tex_addr;
+  LineConfig line;  // line rasterisation rule (model/stages/line.hpp, docs/lines.md)
 
   template <class F>
   void for_each_unit(F&& f) {
@@ -37,6 +39,7 @@ struct Config {
     f("div", div);
     f("recip", recip);
     f("tex_addr", tex_addr);
+    f("line", line);
   }
   template <class F>
   void for_each_unit(F&& f) const {
