@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "model/stages/attr.hpp"
 #include "model/unit/backend.hpp"
 #include "model/unit/geometry.hpp"
 #include "reference/reference.hpp"
@@ -66,7 +67,7 @@ void IdealJudge::solve(uint32_t prim, const mpz_class& xnum, const mpz_class& yn
   n[2] = a[0] * c[1] - a[1] * c[0];
 }
 
-IdealValue IdealJudge::at(uint32_t prim, int px, int py) const {
+IdealValue IdealJudge::eval(uint32_t prim, int px, int py, bool in_front) const {
   IdealValue r;
   if ((size_t)prim * 3 >= tris_.size()) return r;
   for (int i = 0; i < 3; ++i)
@@ -83,7 +84,7 @@ IdealValue IdealJudge::at(uint32_t prim, int px, int py) const {
     nw += n[i] * tris_[prim * 3 + i].p[3];
     nz += n[i] * tris_[prim * 3 + i].p[2];
   }
-  if (sgn(nw) * sgn(s) <= 0) return r;  // behind the eye (or at w = 0)
+  if (sgn(nw) == 0 || (in_front && sgn(nw) * sgn(s) < 0)) return r;  // at w = 0, or behind the eye
   r.valid = true;
   r.z = mpq_class(nz, nw);
   r.z.canonicalize();
@@ -99,7 +100,7 @@ IdealValue IdealJudge::at(uint32_t prim, int px, int py) const {
 
 double IdealJudge::depth_gradient(uint32_t prim, int px, int py) const {
   // Depth is affine in window x, y on the primitive's plane: two exact differences.
-  const IdealValue c = at(prim, px, py), x = at(prim, px + 1, py), y = at(prim, px, py + 1);
+  const IdealValue c = eval(prim, px, py, false), x = eval(prim, px + 1, py, false), y = eval(prim, px, py + 1, false);
   if (!c.valid || !x.valid || !y.valid) return -1;
   return std::fabs(mpq_class(x.z - c.z).get_d()) + std::fabs(mpq_class(y.z - c.z).get_d());
 }
@@ -151,12 +152,29 @@ IdealValue snapped_at(const Config& cfg, const DrawState& st, const ClipTriangle
   for (const SetupTriangle& t : pieces) {
     ExactVertex ev[3];
     for (int k = 0; k < 3; ++k) ev[k] = exact_vertex(cfg.raster, t.v[k], -1);
-    const ExactSample es = exact_at_pixel(ev, px, py, affine);
-    if (!es.inside) continue;
+    if (!exact_at_pixel(ev, px, py, affine).inside) continue;  // coverage: the snapped triangle
+    // The positions the planes are set up from: the attribute triangle at its F fraction bits
+    // (model/stages/attr.hpp), or the snapped one.
+    TriSetup ts;
+    AttrSetup as;
+    if (attr_separate(cfg.raster) && setup_triangle(cfg, st, t, ts) == SetupOutcome::Ok) as = attr_setup(cfg, t, ts);
+    auto place = [&](ExactVertex& e, int k) {
+      if (!as.ok) return;
+      const mpq_class unit(mpz_class(1), mpz_class(1) << (unsigned long)as.F);
+      e.x = mpq_class(mpz_class(std::to_string(as.ox + as.x[k]))) * unit;
+      e.y = mpq_class(mpz_class(std::to_string(as.oy + as.y[k]))) * unit;
+      // The depth plane's vertex value: z·(2^db − 1) at z_frac_bits − db fraction bits.
+      const RasterConfig& rc = cfg.raster;
+      e.z = mpq_class(mpz_class(std::to_string(attr_depth_q(rc, t.v[k].z))),
+                      (mpz_class(1) << (unsigned long)(rc.z_frac_bits - rc.depth_bits())) *
+                          ((mpz_class(1) << (unsigned long)rc.depth_bits()) - 1));
+      e.z.canonicalize();  // GMP arithmetic needs canonical operands
+    };
+    for (int k = 0; k < 3; ++k) place(ev[k], k);
     r.valid = true;
-    r.z = es.z;
+    r.z = exact_at_pixel(ev, px, py, affine).z;
     for (int m = 0; m < st.num_varyings; ++m) {
-      for (int k = 0; k < 3; ++k) ev[k] = exact_vertex(cfg.raster, t.v[k], m);
+      for (int k = 0; k < 3; ++k) ev[k] = exact_vertex(cfg.raster, t.v[k], m), place(ev[k], k);
       r.v[m] = exact_at_pixel(ev, px, py, affine).v;
     }
     return r;

@@ -40,10 +40,10 @@ class IdealJudge {
  public:
   IdealJudge(const DrawState& st, const std::vector<ClipTriangle>& tris);
   // Contract: the ideal value of primitive `prim` at the centre of pixel (px, py); exact.
-  IdealValue at(uint32_t prim, int px, int py) const;
+  IdealValue at(uint32_t prim, int px, int py) const { return eval(prim, px, py, true); }
   // Contract: |∂z/∂x| + |∂z/∂y| of the ideal window depth of `prim`, in units of the whole depth
   // range per pixel (depth is affine in window x, y: exact differences of three exact values,
-  // converted to double). Negative when undefined at that pixel.
+  // converted to double). Negative when undefined (edge-on).
   double depth_gradient(uint32_t prim, int px, int py) const;
 
  private:
@@ -55,6 +55,9 @@ class IdealJudge {
   DrawState st_;
   std::vector<V> tris_;  // 3 per primitive
   void solve(uint32_t prim, const mpz_class& xnum, const mpz_class& ynum, mpz_class n[3]) const;
+  // in_front: require the point to be in front of the eye (the gradient does not: window depth
+  // is affine in x, y over the whole plane).
+  IdealValue eval(uint32_t prim, int px, int py, bool in_front) const;
 };
 
 // The model's fragments as an image (last written per pixel, like the peer's readback):

@@ -1,6 +1,8 @@
 // Error analysis of a rendered frame (analysis/render_analysis.hpp).
 #include "analysis/render_analysis.hpp"
 
+#include "analysis/ideal.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -164,36 +166,40 @@ SpotChecks exact_spot_checks(const Scene& sc, const FrameOutput& fo, int n) {
   SpotChecks s;
   const int nv = sc.state.num_varyings;
   s.var_ulp.resize(nv);
+  s.ideal_var_ulp.resize(nv);
   if (fo.fragments.empty() || n <= 0) return s;
   const int p = sc.config.raster.varying_out_sig_bits;
-  const mpq_class dmax = mpq_class(mpz_class(1) << sc.config.raster.depth_bits()) - 1;
-  const bool affine = sc.state.interp == InterpMode::Affine;
+  const int db = sc.config.raster.depth_bits();
+  const mpq_class dmax = mpq_class(mpz_class(1) << db) - 1;
   const size_t step = std::max<size_t>(1, fo.fragments.size() / (size_t)n);
+  const IdealJudge judge(sc.state, sc.tris);
   for (size_t i = 0; i < fo.fragments.size(); i += step) {
     const Fragment& f = fo.fragments[i];
-    std::vector<SetupTriangle> st;
-    RasterStats scratch;
-    geometry(sc.config, sc.state, sc.tris[f.prim], f.prim, st, scratch);
-    bool found = false;
-    for (const auto& t : st) {
-      ExactVertex ev[3];
-      for (int k = 0; k < 3; ++k) ev[k] = exact_vertex(sc.config.raster, t.v[k], -1);
-      const ExactSample es = exact_at_pixel(ev, f.x, f.y, affine);
-      if (!es.inside) continue;
-      found = true;
+    // Level 1: exact on the model's own quantised triangle (analysis/ideal.hpp, snapped_at).
+    const IdealValue own = snapped_at(sc.config, sc.state, sc.tris[f.prim], f.x, f.y);
+    if (!own.valid) {
+      ++s.not_covered_exactly;
+    } else {
       ++s.checked;
-      const mpq_class dz = mpq_class(f.depth) - es.z * dmax;
+      const mpq_class dz = mpq_class(f.depth) - own.z * dmax;
       s.depth_lsb.add(std::abs(dz.get_d()));
       for (int k = 0; k < nv; ++k) {
-        for (int j = 0; j < 3; ++j) ev[j] = exact_vertex(sc.config.raster, t.v[j], k);
-        const ExactSample ek = exact_at_pixel(ev, f.x, f.y, affine);
-        const double ex = ek.v.get_d();
-        const double u = ulp_of(ex, p);
-        if (u > 0) s.var_ulp[k].add(std::abs(mpq_class(to_mpq(f.var[k]) - ek.v).get_d()) / u);
+        const double u = ulp_of(own.v[k].get_d(), p);
+        if (u > 0) s.var_ulp[k].add(std::abs(mpq_class(to_mpq(f.var[k]) - own.v[k]).get_d()) / u);
       }
-      break;
     }
-    if (!found) ++s.not_covered_exactly;
+    // Level 2: exact ideal of the unsnapped input.
+    const IdealValue id = judge.at(f.prim, f.x, f.y);
+    if (!id.valid) {
+      ++s.ideal_undefined;
+      continue;
+    }
+    ++s.ideal_checked;
+    s.ideal_depth_lsb.add(depth_err_lsb(mpq_class(mpz_class(f.depth), mpz_class(dmax)), id.z, db));
+    for (int k = 0; k < nv; ++k) {
+      const double e = ulp_err(to_mpq(f.var[k]), id.v[k], p);
+      if (e >= 0) s.ideal_var_ulp[k].add(e);
+    }
   }
   return s;
 }

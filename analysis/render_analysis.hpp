@@ -40,10 +40,17 @@ CoverageDiff compare_coverage(const std::vector<Fragment>& mf, const std::vector
 // Exact spot checks: for up to n fragments (evenly spaced in draw order), the snapped setup
 // triangles of the fragment's primitive are rebuilt with geometry(), and the model's depth and
 // varyings compared with the exact rational values (GMP) from those snapped vertices.
+// Exact spot checks at two levels (docs/pipeline.md, "Accuracy against the ideal"): against exact
+// arithmetic on the model's own quantised triangle (snapped positions, or the attribute positions
+// the planes are set up from: how well each rounding is done), and against the IDEAL, the exact
+// solve of the unsnapped float32 input at the pixel centre (analysis/ideal.hpp: what a user sees).
 struct SpotChecks {
   uint64_t checked = 0, not_covered_exactly = 0;
   ErrStat depth_lsb;
   std::vector<ErrStat> var_ulp;
+  uint64_t ideal_checked = 0, ideal_undefined = 0;
+  ErrStat ideal_depth_lsb;
+  std::vector<ErrStat> ideal_var_ulp;
 };
 SpotChecks exact_spot_checks(const Scene& sc, const FrameOutput& fo, int n);
 

@@ -35,10 +35,13 @@ struct RasterConfig {
   int interp_block_bits = 40;
   // Fraction bits of the window x, y the depth and varying planes are set up from (issue 8;
   // docs/pipeline.md, "Attribute positions"). Coverage keeps the snapped subpixel_bits positions.
-  // Equal to subpixel_bits: the planes use the snapped positions and z = RNE(z_c·rcp(w_c)), the
-  // model before issue 8, bit for bit. Larger: x_c/w_c, y_c/w_c and z_c/w_c are divided exactly
-  // and rounded once (x, y to attr_subpixel_bits, z to z_frac_bits).
-  int attr_subpixel_bits = 8;
+  // At most subpixel_bits: the planes use the snapped positions and z = RNE(z_c·rcp(w_c)), the
+  // model before issue 8, bit for bit. Larger: x_c/w_c, y_c/w_c, z_c/w_c, 1/w_c and v/w_c are
+  // divided exactly and rounded once (x, y to attr_subpixel_bits, z to z_frac_bits, 1/w and
+  // v/w to attr_sig_bits). 24: docs/pipeline.md,
+  // "Attribute positions" (position error ≤ 2^−25 px: ½ D24 LSB needs a depth gradient of a
+  // whole depth range per pixel before it shows).
+  int attr_subpixel_bits = 24;
   // Signed bits of the triangle-relative attribute coordinates (vertices and candidate pixel
   // centres relative to vertex 0): a triangle whose extent needs more drops fraction bits below
   // attr_subpixel_bits. Edge values of the attribute planes take 2·attr_coord_bits + 2 bits, the

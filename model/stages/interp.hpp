@@ -44,8 +44,8 @@ inline void floor_divmod(i128 a, i128 d, i128& q, i128& r) {
 
 // Exact stepping of RNE(Z / den) along +x.
 struct DepthStepper {
-  i128 q = 0, r = 0, dq = 0, dr = 0, den = 1;
-  DepthStepper(const DepthSetup& s, int i, int j) : den(s.den) {
+  i128 q = 0, r = 0, dq = 0, dr = 0, den = 1, max_code = 0;
+  DepthStepper(const DepthSetup& s, int i, int j) : den(s.den), max_code(s.max_code) {
     floor_divmod(s.z.at(i, j), den, q, r);
     floor_divmod(s.z.dx, den, dq, dr);
   }
@@ -55,7 +55,11 @@ struct DepthStepper {
     if (r >= den) r -= den, q += 1;
   }
   // Round to nearest, ties to even.
-  uint32_t code() const { return (uint32_t)(rne_round_up<i128>(q, r, den) ? q + 1 : q); }
+  // Clamped to [0, max_code] (acts only on attribute planes, see DepthSetup).
+  uint32_t code() const {
+    const i128 c = rne_round_up<i128>(q, r, den) ? q + 1 : q;
+    return (uint32_t)(c < 0 ? 0 : c > max_code ? max_code : c);
+  }
 };
 
 // ---- the stage ------------------------------------------------------------------------------

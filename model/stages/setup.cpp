@@ -154,6 +154,7 @@ DepthSetup depth_setup(const Config& cfg, const SetupTriangle& tri, const TriSet
   DepthSetup d;
   d.z = make_plane(t, q);
   d.den = (i128)t.area2 << cfg.raster.z_frac_bits;
+  d.max_code = depth_max_code(cfg.raster);
   return d;
 }
 

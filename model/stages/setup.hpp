@@ -66,28 +66,39 @@ inline constexpr int kEdgeValueMaxBits = 63;
 //   rw:   1/w_c from the reciprocal unit, a normalised FxFloat (recip.out_sig_bits significand).
 //   vw:   v_k · (1/w_c) per varying, a normalised FxFloat (raster.varying_sig_bits), or, in the
 //         affine mode, v_k itself.
+//
+// With separate attribute positions (raster.attr_subpixel_bits > subpixel_bits; model/stages/attr.hpp):
+//   ax, ay: window coordinates with attr_subpixel_bits fraction bits, RNE of the exact quotient;
+//   z:      RNE of the exact z_c / w_c (not z_c·rcp(w_c));
+//   rw, vw: RNE of the exact 1/w_c and v_k / w_c to raster.attr_sig_bits.
+// Otherwise ax, ay equal x, y (and are not part of the record).
 struct SetupVertex {
   int64_t x = 0, y = 0;
+  int64_t ax = 0, ay = 0;
   uint64_t z = 0;
   FxFloat rw;
   FxFloat vw[kMaxVaryings];
 
   // Widths: x, y signed window_int_bits + subpixel_bits (the snap's range), z z_frac_bits + 1
-  // (z = 1 is 2^z_frac_bits).
+  // (z = 1 is 2^z_frac_bits); ax, ay signed window_int_bits + attr_subpixel_bits.
   template <class V>
   void visit(V& v, const RecordShape& s, const std::string& pre) {
     const RasterConfig& r = s.cfg.raster;
+    const bool attr = r.attr_subpixel_bits > r.subpixel_bits;
     v(pre + "x", x, r.window_int_bits + r.subpixel_bits, true);
     v(pre + "y", y, r.window_int_bits + r.subpixel_bits, true);
+    if (attr) {
+      v(pre + "ax", ax, r.window_int_bits + r.attr_subpixel_bits, true);
+      v(pre + "ay", ay, r.window_int_bits + r.attr_subpixel_bits, true);
+    }
     v(pre + "z", z, r.z_frac_bits + 1, false);
-    visit_fx(v, pre + "rw", rw, s.cfg.recip.out_sig_bits, s);
-    for (int k = 0; k < s.num_varyings; ++k) visit_fx(v, pre + "vw" + std::to_string(k), vw[k], r.varying_sig_bits, s);
+    visit_fx(v, pre + "rw", rw, attr ? r.attr_sig_bits : s.cfg.recip.out_sig_bits, s);
+    for (int k = 0; k < s.num_varyings; ++k)
+      visit_fx(v, pre + "vw" + std::to_string(k), vw[k], attr ? r.attr_sig_bits : r.varying_sig_bits, s);
   }
 };
 
-// Stage 4 output, stage 5 input. (A second, higher-precision set of vertex positions for the
-// depth and varying planes would be added here and used by the plane builders below, apart
-// from the snapped x, y that decide coverage.)
+// Stage 4 output, stage 5 input.
 struct SetupTriangle {
   SetupVertex v[3];
   uint32_t prim = 0;  // index of the input primitive it came from
@@ -146,7 +157,8 @@ SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const SetupT
 // P(i, j) = c + i·dx + j·dy over pixel indices (exact; widths checked by validate(), model/config/validate.hpp).
 struct Plane {
   i128 c = 0, dx = 0, dy = 0;
-  i128 at(int i, int j) const { return c + (i128)i * dx + (i128)j * dy; }
+  int i0 = 0, j0 = 0;  // anchor: c is the value at pixel (i0, j0) (attribute planes; 0 otherwise)
+  i128 at(int i, int j) const { return c + (i128)(i - i0) * dx + (i128)(j - j0) * dy; }
 };
 
 // Contract: the plane Σ_k E_k(centre(i, j))·q[k] of a set-up triangle; exact.
@@ -187,6 +199,10 @@ inline uint32_t depth_max_code(const RasterConfig& c) { return (uint32_t)((1u <<
 struct DepthSetup {
   Plane z;     // Σ E_k·z_k·(2^depth_bits − 1)
   i128 den = 0;  // 2A · 2^z_frac_bits (> 0)
+  // Codes are clamped to [0, max_code]: on the snapped triangle z is a convex combination and
+  // the clamp never acts; attribute planes extrapolate slightly at covered pixel centres outside
+  // the attribute triangle (model/stages/attr.hpp).
+  i128 max_code = ((i128)1 << 32) - 1;
 };
 // Contract: exact; needs z_k ≤ 2^z_frac_bits (setup rejects larger as RejectedRange).
 DepthSetup depth_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup& t);
@@ -194,16 +210,31 @@ DepthSetup depth_setup(const Config& cfg, const SetupTriangle& tri, const TriSet
 // Field widths of the planes (the bounds validate() checks against i128):
 // Σ E_k·Q_k over three vertices with |E_k| < 2^(edge_value_bits−1), |Q_k| < 2^(qbits−1), plus 2
 // bits for the three-term sum.
-inline int interp_plane_bits(const RasterConfig& r) { return edge_value_bits(r) + r.interp_block_bits + 1 + 2; }
-inline int depth_plane_bits(const RasterConfig& r) { return edge_value_bits(r) + r.z_frac_bits + 1 + r.depth_bits() + 2; }
-// 2A·2^z_frac_bits: unsigned, 2A < 2^(edge_value_bits−1).
-inline int depth_den_bits(const RasterConfig& r) { return edge_value_bits(r) - 1 + r.z_frac_bits; }
+// With separate attribute positions the planes use the attribute edge functions
+// (2·attr_coord_bits + 2 bits) and the depth vertex values z_k·(2^db − 1) at z_frac_bits − db
+// fraction bits (z_frac_bits + 1 bits; model/stages/attr.hpp).
+inline bool attr_planes(const RasterConfig& r) { return r.attr_subpixel_bits > r.subpixel_bits; }
+inline int plane_edge_bits(const RasterConfig& r) {
+  return attr_planes(r) ? 2 * r.attr_coord_bits + 2 : edge_value_bits(r);
+}
+inline int interp_plane_bits(const RasterConfig& r) { return plane_edge_bits(r) + r.interp_block_bits + 1 + 2; }
+inline int depth_plane_bits(const RasterConfig& r) {
+  return plane_edge_bits(r) + r.z_frac_bits + 1 + (attr_planes(r) ? 0 : r.depth_bits()) + 2;
+}
+// 2A·2^z_frac_bits (attribute planes: 2A'·2^(z_frac_bits − db)): unsigned, 2A < 2^(edge bits − 1).
+inline int depth_den_bits(const RasterConfig& r) {
+  return plane_edge_bits(r) - 1 + r.z_frac_bits - (attr_planes(r) ? r.depth_bits() : 0);
+}
 
 template <class V>
-void visit_plane(V& v, const std::string& name, Plane& p, int bits) {
+void visit_plane(V& v, const std::string& name, Plane& p, int bits, const RasterConfig& r) {
   v(name + "_c", p.c, bits, true);
   v(name + "_dx", p.dx, bits, true);
   v(name + "_dy", p.dy, bits, true);
+  if (attr_planes(r)) {  // anchored attribute planes: c is the value at pixel (i0, j0)
+    v(name + "_i0", p.i0, r.window_int_bits, true);
+    v(name + "_j0", p.j0, r.window_int_bits, true);
+  }
 }
 
 // ---- the stage ------------------------------------------------------------------------------
@@ -235,17 +266,23 @@ struct TriangleEquations {
     v("x1", edges.x1, r.window_int_bits, true);
     v("y0", edges.y0, r.window_int_bits, true);
     v("y1", edges.y1, r.window_int_bits, true);
-    visit_plane(v, "z", depth.z, depth_plane_bits(r));
+    visit_plane(v, "z", depth.z, depth_plane_bits(r), r);
     v("z_den", depth.den, depth_den_bits(r), false);
-    visit_plane(v, "den", interp.den, interp_plane_bits(r));
+    visit_plane(v, "den", interp.den, interp_plane_bits(r), r);
     v("den_exp", interp.den_exp, fx_exp_field_bits(s.cfg), true);
     for (int m = 0; m < s.num_varyings; ++m) {
       const std::string p = "num" + std::to_string(m);
-      visit_plane(v, p, interp.num[m], interp_plane_bits(r));
+      visit_plane(v, p, interp.num[m], interp_plane_bits(r), r);
       v(p + "_exp", interp.num_exp[m], fx_exp_field_bits(s.cfg), true);
     }
   }
 };
+
+// Contract (model/stages/attr.cpp): the depth and varying planes of `eq` from the attribute
+// positions of `tri` (eq.edges set up). false when the attribute triangle has zero area (the
+// caller then uses the coverage triangle's planes).
+bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, bool varyings,
+                      TriangleEquations& eq);
 
 class SetupStage {
  public:
@@ -263,9 +300,11 @@ class SetupStage {
     const SetupOutcome o = setup_triangle(cfg_, st_, in, out_.edges);
     if (o != SetupOutcome::Ok) return o;
     out_.prim = in.prim;
-    out_.depth = depth_setup(cfg_, in, out_.edges);
-    if (varyings_) interp_setup(cfg_, st_, in, out_.edges, out_.interp);
-    else out_.interp.n = 0;
+    if (!attr_planes(cfg_.raster) || !attr_plane_setup(cfg_, st_, in, varyings_, out_)) {
+      out_.depth = depth_setup(cfg_, in, out_.edges);
+      if (varyings_) interp_setup(cfg_, st_, in, out_.edges, out_.interp);
+      else out_.interp.n = 0;
+    }
     emit(static_cast<const Out&>(out_));
     return o;
   }

@@ -1,6 +1,8 @@
 // Stages 3 and 4: reciprocal + perspective divide, viewport + snap. Contracts in model/stages/viewport.hpp.
 #include "model/stages/viewport.hpp"
 
+#include "model/stages/attr.hpp"
+
 #include "model/stages/recip.hpp"
 
 namespace fxr {
@@ -116,6 +118,25 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
   out.x = snap_window(xn, st.viewport_w, st.viewport_x, rc, &range);
   out.y = snap_window(yn, st.viewport_h, st.viewport_y, rc, &range);
   if (range) return ProjectStatus::Range;
+  if (attr_separate(rc)) {
+    // Separate attribute positions (model/stages/attr.hpp): x_c/w_c, y_c/w_c, z_c/w_c, 1/w_c and
+    // v_k/w_c as exact quotients, each rounded once; r is used for the snap only. w_c is exact
+    // (float32 or the clipper's rounding to recip.in_sig_bits).
+    const FxFloat& w = v.p[3];
+    out.ax = attr_window(v.p[0], w, st.viewport_w, st.viewport_x, rc, &range);
+    out.ay = attr_window(v.p[1], w, st.viewport_h, st.viewport_y, rc, &range);
+    if (range) return ProjectStatus::Range;
+    out.z = attr_depth(v.p[2], w, rc);
+    static const FxFloat kOne{false, 1, 0};
+    out.rw = attr_quotient(kOne, w, rc.attr_sig_bits);
+    for (int k = 0; k < st.num_varyings; ++k)
+      out.vw[k] = st.interp == InterpMode::Affine ? normalize_fx(v.v[k], rc.attr_sig_bits, Round::HalfEven)
+                                                  : attr_quotient(v.v[k], w, rc.attr_sig_bits);
+    for (int k = st.num_varyings; k < kMaxVaryings; ++k) out.vw[k] = FxFloat{};
+    return ProjectStatus::Ok;
+  }
+  out.ax = out.x;
+  out.ay = out.y;
   out.z = snap_depth(zn, rc);
   out.rw = r;
   for (int k = 0; k < st.num_varyings; ++k) {

@@ -2,6 +2,8 @@
 // model/unit/backend.hpp and the stage headers).
 #include "model/unit/backend.hpp"
 
+#include "model/stages/attr.hpp"
+
 #include <string>
 
 #include "model/config/validate.hpp"
@@ -13,6 +15,7 @@ namespace fxr {
 
 void frame_begin(const Config& cfg, const DrawState& st, FrameOutput& f) {
   validate(cfg, "configuration");  // every range and cross-field rule (model/config/validate.hpp)
+  check_attr_widths(cfg);           // attribute-plane widths (model/stages/attr.hpp)
   if (st.num_varyings < 0 || st.num_varyings > kMaxVaryings)
     throw ConfigError("draw state: field 'num_varyings' = " + std::to_string(st.num_varyings) +
                       " is outside 0.." + std::to_string(kMaxVaryings));

@@ -179,6 +179,7 @@ inline FxFloat fx_of_q(const mpq_class& x) {
 
 struct RSetup {
   mpz_class x, y, z;
+  mpz_class ax, ay;  // attribute positions (= x, y when the planes use the snapped ones)
   mpq_class rw;
   mpq_class vw[kMaxVaryings];
 };
@@ -201,6 +202,23 @@ inline RSetup ref_project(const Config& cfg, const DrawState& st, const RVtx& v)
   for (int k = 0; k < st.num_varyings; ++k)
     o.vw[k] = rne_sig(st.interp == InterpMode::Affine ? v.v[k] : mpq_class(v.v[k] * r),
                       cfg.raster.varying_sig_bits);
+  o.ax = o.x;
+  o.ay = o.y;
+  const RasterConfig& rc = cfg.raster;
+  if (rc.attr_subpixel_bits > rc.subpixel_bits) {
+    // Attribute path (model/stages/attr.hpp): every per-vertex quotient exact, rounded once.
+    const mpq_class w = v.p[3];
+    auto awin = [&](const mpq_class& c, long size, long org) -> mpz_class {
+      return rne_int(((c / w + 1) * frac(size, 2) + org) * pow2(rc.attr_subpixel_bits));
+    };
+    o.ax = awin(v.p[0], st.viewport_w, st.viewport_x);
+    o.ay = awin(v.p[1], st.viewport_h, st.viewport_y);
+    mpz_class za = rne_int(v.p[2] / w * pow2(rc.z_frac_bits));
+    o.z = za < 0 ? mpz_class(0) : (za > one ? one : za);
+    o.rw = rne_sig(mpq_class(1 / w), rc.attr_sig_bits);
+    for (int k = 0; k < st.num_varyings; ++k)
+      o.vw[k] = rne_sig(st.interp == InterpMode::Affine ? v.v[k] : mpq_class(v.v[k] / w), rc.attr_sig_bits);
+  }
   return o;
 }
 
@@ -251,6 +269,8 @@ inline int diff_count(const SetupVertex& m, const RSetup& r, int nv) {
   int d = 0;
   d += mpz_class((long)m.x) != r.x;
   d += mpz_class((long)m.y) != r.y;
+  d += mpz_class((long)m.ax) != r.ax;
+  d += mpz_class((long)m.ay) != r.ay;
   d += mpz_class((unsigned long)m.z) != r.z;
   d += q_of(m.rw) != r.rw;
   for (int k = 0; k < nv; ++k) d += q_of(m.vw[k]) != r.vw[k];

@@ -1,0 +1,233 @@
+// Attribute positions and attribute planes (issue 8). Contracts in model/stages/attr.hpp;
+// derivations in docs/pipeline.md, "Attribute positions".
+#include "model/stages/attr.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <string>
+
+namespace fxr {
+
+namespace {
+
+// Values held in i128 (127 value bits).
+constexpr int kI128Bits = 127;
+// Largest msb an intermediate shifted numerator or denominator may have in the exact division.
+constexpr int kDivMaxMsb = 125;
+
+// RNE(C + (−1)^neg · N·2^k / D), exact (D > 0). *overflow when N·2^k cannot be formed (then the
+// quotient is far beyond every window / depth range and the caller saturates or rejects).
+i128 rne_quotient_plus(bool neg, u128 N, int k, u128 D, i128 C, bool* overflow) {
+  if (N == 0) return C;
+  u128 num = N, den = D;
+  if (k >= 0) {
+    if (msb_index(N) + k > kDivMaxMsb) {
+      *overflow = true;
+      return 0;
+    }
+    num = N << k;
+  } else {
+    if (msb_index(D) - k > kDivMaxMsb) return C;  // |quotient| < 2^−24: rounds to C either way
+    den = D << (-k);
+  }
+  const u128 q = num / den, r = num % den;
+  if (q >> 120) {
+    *overflow = true;
+    return 0;
+  }
+  i128 fl;
+  u128 frac_num;  // fraction = frac_num / den ∈ [0, 1)
+  if (!neg) {
+    fl = C + (i128)q;
+    frac_num = r;
+  } else if (r == 0) {
+    return C - (i128)q;
+  } else {
+    fl = C - (i128)q - 1;
+    frac_num = den - r;
+  }
+  // Round half to even: 2·frac vs 1 (den < 2^126, so 2·frac_num does not overflow u128).
+  const u128 twice = frac_num << 1;
+  if (twice > den || (twice == den && (fl & 1))) fl += 1;
+  return fl;
+}
+
+// FxFloat with a zero-exponent-safe view: sig as u128.
+inline u128 sig128(const FxFloat& f) { return (u128)f.sig; }
+
+}  // namespace
+
+void check_attr_widths(const Config& cfg) {
+  const RasterConfig& r = cfg.raster;
+  if (!attr_separate(r)) return;  // attr_subpixel_bits ≤ subpixel_bits: planes on the snapped triangle
+  if (attr_position_bits(r) > 62)
+    throw ConfigError("raster: fields 'window_int_bits' + 'attr_subpixel_bits' = " +
+                      std::to_string(attr_position_bits(r)) + " bits: attribute positions are held in int64 (<= 62)");
+  if (r.attr_coord_bits < r.window_int_bits + 3)
+    throw ConfigError("raster: field 'attr_coord_bits' (" + std::to_string(r.attr_coord_bits) +
+                      ") must be >= window_int_bits + 3 so that every triangle keeps a fraction bit");
+  if (r.z_frac_bits < r.depth_bits())
+    throw ConfigError("raster: field 'z_frac_bits' must be >= the depth format's bits on the attribute path");
+  const int depth_sum = attr_edge_value_bits(r) + r.z_frac_bits + 1 + 2;
+  const int interp_sum = attr_edge_value_bits(r) + r.interp_block_bits + 1 + 2;
+  if (depth_sum > kI128Bits || interp_sum > kI128Bits)
+    throw ConfigError("raster: field 'attr_coord_bits' (" + std::to_string(r.attr_coord_bits) +
+                      "): attribute plane sums need " + std::to_string(std::max(depth_sum, interp_sum)) +
+                      " bits, more than " + std::to_string(kI128Bits));
+}
+
+int64_t attr_window(const FxFloat& c, const FxFloat& w, int64_t size, int64_t origin, const RasterConfig& rc,
+                    bool* range) {
+  const int A = rc.attr_subpixel_bits;  // ≥ 1 (attr_separate: A > subpixel_bits ≥ 0)
+  // x·2^A = ±m_c·size·2^(e_c − e_w + A − 1) / m_w + (size + 2·origin)·2^(A − 1)
+  const i128 C = (i128)(size + 2 * origin) << (A - 1);
+  bool ovf = false;
+  const i128 v = c.sig == 0 ? C
+                            : rne_quotient_plus(c.neg, sig128(c) * (u128)size, c.exp - w.exp + A - 1, sig128(w), C, &ovf);
+  const i128 lim = (i128)1 << (attr_position_bits(rc) - 1);
+  if (ovf || v >= lim || v < -lim) {
+    *range = true;
+    return 0;
+  }
+  return (int64_t)v;
+}
+
+uint64_t attr_depth(const FxFloat& z, const FxFloat& w, const RasterConfig& rc) {
+  if (z.sig == 0 || z.neg) return 0;  // z ≤ 0 saturates to 0
+  const i128 one = (i128)1 << rc.z_frac_bits;
+  bool ovf = false;
+  const i128 v = rne_quotient_plus(false, sig128(z), z.exp - w.exp + rc.z_frac_bits, sig128(w), 0, &ovf);
+  if (ovf || v > one) return (uint64_t)one;  // z > w saturates to 1
+  return (uint64_t)v;
+}
+
+FxFloat attr_quotient(const FxFloat& n, const FxFloat& w, int bits) {
+  FxFloat out;
+  out.neg = n.neg;
+  if (n.sig == 0) return out;
+  // q = n.sig·2^s / w.sig with s chosen so that q ∈ [2^bits, 2^(bits+2)): at least one guard bit.
+  const int s = bits + 1 + msb_index((u128)w.sig) - msb_index((u128)n.sig);
+  u128 num = (u128)n.sig, den = (u128)w.sig;
+  if (s >= 0) num <<= s;
+  else den <<= -s;
+  const u128 q = num / den;
+  const bool rem = (num % den) != 0;
+  const int extra = msb_index(q) - (bits - 1);  // 1 or 2
+  u128 sig = q >> extra;
+  const bool guard = (q >> (extra - 1)) & 1;
+  const bool sticky = rem || low_bits(q, extra - 1) != 0;
+  if (guard && (sticky || (sig & 1))) sig += 1;  // round half to even — the one rounding
+  int e = extra;
+  if (sig >> bits) sig >>= 1, e += 1;            // carry to 2^bits (exact: the low bit is 0)
+  out.sig = (uint64_t)sig;
+  out.exp = n.exp - s - w.exp + e;
+  return out;
+}
+
+AttrSetup attr_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup& t) {
+  const RasterConfig& rc = cfg.raster;
+  const int A = rc.attr_subpixel_bits;
+  AttrSetup s;
+  // Magnitude of the relative coordinates at A bits: vertices, the candidate rectangle's corner
+  // pixel centres, and one pixel (so that the per-pixel step 2^F stays within the width too).
+  const i128 ox = tri.v[0].ax, oy = tri.v[0].ay;
+  u128 M = (u128)1 << A;
+  auto grow = [&M](i128 d) { M = std::max(M, (u128)(d < 0 ? -d : d)); };
+  for (int k = 1; k < 3; ++k) grow(tri.v[k].ax - ox), grow(tri.v[k].ay - oy);
+  const i128 half = (i128)1 << (A - 1);
+  for (int i : {t.x0, t.x1}) grow(((i128)i << A) + half - ox);
+  for (int j : {t.y0, t.y1}) grow(((i128)j << A) + half - oy);
+  // Signed bits the relative values need, with one more for the rounding below: msb + 3.
+  const int need = msb_index(M) + 3;
+  const int drop = std::max(0, need - rc.attr_coord_bits);  // PRECISION IS LOST HERE when > 0 (RNE)
+  s.F = A - drop;
+  int64_t X[3], Y[3];
+  for (int k = 0; k < 3; ++k) {
+    X[k] = (int64_t)shift_round((i128)tri.v[k].ax, drop, Round::HalfEven);
+    Y[k] = (int64_t)shift_round((i128)tri.v[k].ay, drop, Round::HalfEven);
+  }
+  s.ox = X[0];
+  s.oy = Y[0];
+  for (int k = 0; k < 3; ++k) s.x[k] = X[k] - s.ox, s.y[k] = Y[k] - s.oy;
+  // Edge k from v_{k+1} to v_{k+2} in relative coordinates (exact in i128: < 2^(2·acb+1)).
+  for (int k = 0; k < 3; ++k) {
+    const int a = (k + 1) % 3, b = (k + 2) % 3;
+    s.a[k] = (i128)s.y[a] - s.y[b];
+    s.b[k] = (i128)s.x[b] - s.x[a];
+    s.c[k] = (i128)s.x[a] * s.y[b] - (i128)s.x[b] * s.y[a];
+  }
+  s.area2 = s.c[0];  // E'_0 at vertex 0, which is the origin
+  if (s.area2 == 0) return s;  // ok = false
+  if (s.area2 < 0) {
+    for (int k = 0; k < 3; ++k) s.a[k] = -s.a[k], s.b[k] = -s.b[k], s.c[k] = -s.c[k];
+    s.area2 = -s.area2;
+  }
+  s.i0 = t.x0;
+  s.j0 = t.y0;
+  s.ok = true;
+  return s;
+}
+
+Plane make_attr_plane(const AttrSetup& s, const int64_t q[3]) {
+  // E'_k(centre(i, j)) = a_k·((2i + 1)·2^(F−1) − ox) + b_k·((2j + 1)·2^(F−1) − oy) + c_k, anchored at (i0, j0).
+  const i128 h = (i128)1 << (s.F - 1);
+  const i128 X0 = ((i128)s.i0 << s.F) + h - s.ox, Y0 = ((i128)s.j0 << s.F) + h - s.oy;
+  Plane p;
+  p.i0 = s.i0;
+  p.j0 = s.j0;
+  for (int k = 0; k < 3; ++k) {
+    p.dx += (s.a[k] << s.F) * q[k];
+    p.dy += (s.b[k] << s.F) * q[k];
+    p.c += (s.a[k] * X0 + s.b[k] * Y0 + s.c[k]) * q[k];
+  }
+  return p;
+}
+
+DepthSetup attr_depth_setup(const Config& cfg, const SetupTriangle& tri, const AttrSetup& a) {
+  // Vertex values z_k·(2^db − 1) kept to the absolute precision of z_k itself: z_frac_bits − db
+  // fraction bits of an LSB (PRECISION IS LOST HERE: ≤ 2^−(z_frac_bits − db + 1) LSB, RNE, the
+  // same as the rounding of z_k; 2^−9 LSB at D24). z_frac_bits + 1 signed bits.
+  const RasterConfig& rc = cfg.raster;
+  const int64_t M = (int64_t)depth_max_code(rc);
+  int64_t q[3];
+  for (int k = 0; k < 3; ++k) q[k] = attr_depth_q(rc, tri.v[k].z);
+  DepthSetup d;
+  d.z = make_attr_plane(a, q);
+  d.den = a.area2 << (rc.z_frac_bits - rc.depth_bits());
+  d.max_code = M;
+  return d;
+}
+
+bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, bool varyings,
+                      TriangleEquations& eq) {
+  const AttrSetup a = attr_setup(cfg, tri, eq.edges);
+  if (!a.ok) return false;
+  eq.depth = attr_depth_setup(cfg, tri, a);
+  if (varyings) attr_interp_setup(cfg, st, tri, a, eq.interp);
+  else eq.interp.n = 0;
+  return true;
+}
+
+void attr_interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const AttrSetup& a,
+                       InterpSetup& out) {
+  const int bits = cfg.raster.interp_block_bits;
+  out.n = st.num_varyings;
+  if (st.interp == InterpMode::Affine) {
+    const int64_t one[3] = {1, 1, 1};  // R_k = 1: D = 2A'
+    out.den = make_attr_plane(a, one);
+    out.den_exp = 0;
+  } else {
+    const FxFloat rw[3] = {tri.v[0].rw, tri.v[1].rw, tri.v[2].rw};
+    const Block3 r = align_block(rw, bits);
+    out.den = make_attr_plane(a, r.q);
+    out.den_exp = r.exp;
+  }
+  for (int m = 0; m < out.n; ++m) {
+    const FxFloat vw[3] = {tri.v[0].vw[m], tri.v[1].vw[m], tri.v[2].vw[m]};
+    const Block3 b = align_block(vw, bits);
+    out.num[m] = make_attr_plane(a, b.q);
+    out.num_exp[m] = b.exp;
+  }
+}
+
+}  // namespace fxr

@@ -1,0 +1,95 @@
+// model/stages/attr.hpp — attribute positions (issue 8): the depth and varying planes are set up
+// from window positions of higher precision than the snapped coverage positions.
+// docs/pipeline.md, "Attribute positions".
+//
+// Coverage keeps the snapped positions (raster.subpixel_bits, top-left rule, watertight). Depth
+// and varyings are affine / rational functions of the window position, so a vertex shift of
+// δ px moves them by their gradient times δ: on snapped positions (δ ≤ 2^−9 px) that is a
+// bias of tens of D24 LSB on steep planes and thousands on slivers. With
+// raster.attr_subpixel_bits = A > subpixel_bits:
+//   per vertex   x_a = RNE(x_w·2^A), x_w = (x_c/w_c + 1)·W/2 + X0, from the EXACT quotient
+//                (a correctly rounded division, not x_c·rcp(w_c)); likewise y; and
+//                z = RNE(z_c/w_c·2^z_frac_bits), saturated to [0, 2^z_frac_bits];
+//   per triangle relative coordinates: every vertex and every candidate pixel centre relative
+//                to vertex 0, in raster.attr_coord_bits signed bits. When the triangle's extent
+//                needs more, the positions drop s low bits (RNE) to F = A − s fraction bits
+//                (F ≥ attr_coord_bits − window_int_bits − 1 for any triangle of the window range);
+//   planes       P(i, j) = Σ_k E'_k(centre)·Q_k with the attribute edge functions E'_k: exact
+//                i128 integers, anchored at the candidate rectangle's corner (so no evaluated
+//                value leaves its derived width), evaluated exactly at every pixel centre.
+// With A ≤ subpixel_bits this stage is not used (the planes take the coverage edge functions).
+#pragma once
+
+#include <cstdint>
+
+#include "model/arith/fxfloat.hpp"
+#include "model/config/config.hpp"
+#include "model/stages/setup.hpp"
+
+namespace fxr {
+
+// True when the planes are set up from separate attribute positions (A > subpixel_bits).
+inline bool attr_separate(const RasterConfig& c) { return attr_planes(c); }
+
+// ---- widths (derived; docs/pipeline.md "Attribute positions") ------------------------------
+// Signed bits of an attribute edge value and of 2·area' (relative coordinates < 2^(acb−1), so
+// each cross-product component is < 2^acb): 2·acb + 2.
+constexpr int attr_edge_value_bits(const RasterConfig& c) { return 2 * c.attr_coord_bits + 2; }
+// Signed bits of the per-vertex attribute position: window_int_bits integer bits + A fraction bits.
+constexpr int attr_position_bits(const RasterConfig& c) { return c.window_int_bits + c.attr_subpixel_bits; }
+
+// Contract (only when attr_separate): ConfigError naming the field unless positions fit
+// int64 (attr_position_bits ≤ 62), attr_coord_bits ≥ window_int_bits + 2 (so F ≥ 1 for every
+// triangle) and the depth / interpolator sums fit i128 (see attr_edge_value_bits).
+void check_attr_widths(const Config& cfg);
+
+// Contract: RNE(((c/w) + 1)·size/2·2^A + origin·2^A), the exact quotient c/w (w > 0) rounded
+// ONCE; A ≥ 1. *range is set when the result leaves a signed attr_position_bits code.
+int64_t attr_window(const FxFloat& c, const FxFloat& w, int64_t size, int64_t origin, const RasterConfig& rc,
+                    bool* range);
+
+// Contract: RNE(z/w · 2^z_frac_bits) from the exact quotient (w > 0), saturated to
+// [0, 2^z_frac_bits] (z < 0 → 0, z > w → 2^z_frac_bits).
+uint64_t attr_depth(const FxFloat& z, const FxFloat& w, const RasterConfig& rc);
+
+// Contract: RNE(n / w) to a normalised `bits`-bit significand FxFloat (w > 0; n = 0 gives 0), from
+// the exact quotient: one rounding. bits ≤ 62.
+FxFloat attr_quotient(const FxFloat& n, const FxFloat& w, int bits);
+
+// The attribute triangle of one set-up triangle: relative integer coordinates at F fraction bits.
+struct AttrSetup {
+  int F = 0;                 // fraction bits used for this triangle (≤ attr_subpixel_bits)
+  int64_t ox = 0, oy = 0;    // origin: vertex 0 at F bits (absolute window position · 2^F)
+  int64_t x[3], y[3];        // vertices relative to the origin (x[0] = y[0] = 0)
+  i128 a[3], b[3], c[3];     // E'_k(X, Y) = a·X + b·Y + c in relative coordinates, CCW-normalised
+  i128 area2 = 0;            // 2·area' (> 0), attr_edge_value_bits
+  int i0 = 0, j0 = 0;        // plane anchor: the candidate rectangle's corner
+  bool ok = false;           // false: 2·area' = 0 (then the planes fall back to the coverage triangle)
+};
+
+// Contract: the attribute triangle of `tri` (SetupVertex.ax, ay at attr_subpixel_bits) for the
+// candidate rectangle of `t`. Exact apart from the documented drop to F bits. Orientation is
+// normalised by the sign of 2·area' itself (it may differ from the snapped triangle's on
+// near-degenerate triangles; barycentrics E'_k / 2A' do not depend on it).
+AttrSetup attr_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup& t);
+
+// Contract: the plane Σ_k E'_k(centre(i, j))·q[k] anchored at (a.i0, a.j0); exact.
+Plane make_attr_plane(const AttrSetup& a, const int64_t q[3]);
+
+// Contract: the depth plane's vertex value of a vertex with depth z (z_frac_bits):
+// RNE(z·(2^db − 1) / 2^db), i.e. z·(2^db − 1) with z_frac_bits − db fraction bits of an LSB.
+inline int64_t attr_depth_q(const RasterConfig& rc, uint64_t z) {
+  const int64_t M = (int64_t)((1u << rc.depth_bits()) - 1);
+  return (int64_t)shift_round((i128)z * M, rc.depth_bits(), Round::HalfEven);  // product < 2^63
+}
+
+// Contract: depth_setup (depth.hpp) on the attribute triangle: Z = Σ E'_k·z_k·(2^db − 1),
+// den = 2A'·2^z_frac_bits. Pixel centres slightly outside the attribute triangle extrapolate:
+// DepthStepper clamps the code to [0, 2^db − 1].
+DepthSetup attr_depth_setup(const Config& cfg, const SetupTriangle& tri, const AttrSetup& a);
+
+// Contract: interp_setup (interp.hpp) on the attribute triangle (same block alignment).
+void attr_interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const AttrSetup& a,
+                       InterpSetup& out);
+
+}  // namespace fxr
