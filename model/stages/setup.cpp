@@ -166,11 +166,21 @@ StageCost SetupStage::cost(const Config& cfg) {
   for (int k = 0; k < 8; ++k) c.add_mult(cb, cb);
   // Planes: per plane 3 vertex values × (a, b, c): 9 products of an edge field by the value.
   const int planes_interp = kMaxVaryings + 1;  // 1/w and every v/w (sized for the maximum)
+  const int pe = plane_edge_bits(r);  // the planes' edge functions (attribute ones when separate)
   for (int p = 0; p < planes_interp; ++p)
-    for (int k = 0; k < 9; ++k) c.add_mult(edge_value_bits(r), r.interp_block_bits + 1);
-  for (int k = 0; k < 9; ++k) c.add_mult(edge_value_bits(r), r.z_frac_bits + 1 + r.depth_bits());
+    for (int k = 0; k < 9; ++k) c.add_mult(pe, r.interp_block_bits + 1);
+  const int qz = attr_planes(r) ? r.z_frac_bits + 1 : r.z_frac_bits + 1 + r.depth_bits();
+  for (int k = 0; k < 9; ++k) c.add_mult(pe, qz);
   // Block alignment: 3 shifters per plane; bounding box: 4 compares, scissor 4 more.
   c.adder_bits = 6 * (int64_t)edge_coef_bits(r) + 8 * (int64_t)r.window_int_bits;
+  if (attr_planes(r)) {
+    // Attribute triangle (model/stages/attr.hpp): relative coordinates (6 subtractors of
+    // window_int_bits + A bits, the drop to F bits), edge constants and area: 6 + 2 products of
+    // attr_coord_bits; the depth vertex values z·(2^db − 1): 3 products (z_frac_bits + 1) × db.
+    for (int k = 0; k < 8; ++k) c.add_mult(r.attr_coord_bits, r.attr_coord_bits);
+    for (int k = 0; k < 3; ++k) c.add_mult(r.z_frac_bits + 1, r.depth_bits());
+    c.adder_bits += 6 * (int64_t)(r.window_int_bits + r.attr_subpixel_bits) + 6 * (int64_t)(2 * r.attr_coord_bits + 2);
+  }
   c.latency = 4;  // products, sums, alignment, bounding box (estimate until rtl/ has the stage)
   c.ii = 1;
   c.ff_bits = c.latency * record_bits<TriangleEquations>(cfg, kMaxVaryings);

@@ -165,6 +165,22 @@ StageCost ViewportStage::cost(const Config& cfg) {
   c.latency = 3;  // products, scale + offset, rounding (estimate until rtl/ has the stage)
   c.ii = 1;
   c.adder_bits = 3 * (int64_t)(3 + kMaxVaryings) * (sb + rb);
+  if (attr_separate(r)) {
+    // Attribute path (model/stages/attr.hpp): per vertex the exact quotients x_c/w_c, y_c/w_c
+    // (window_int_bits + A + 1 quotient bits), z_c/w_c (z_frac_bits + 2), 1/w_c and every v/w_c
+    // (attr_sig_bits + 2, with guard and sticky), each a correctly rounded division: counted as
+    // a restoring divider's subtractor bits (quotient bits × divisor bits, divisor
+    // recip.in_sig_bits), plus the viewport scale products of x and y. The v·(1/w) products
+    // above are then unused for the planes (kept: the snap still uses x·r, y·r).
+    const int wb = cfg.recip.in_sig_bits;
+    const int q_xy = r.window_int_bits + r.attr_subpixel_bits + 1, q_z = r.z_frac_bits + 2, q_v = r.attr_sig_bits + 2;
+    for (int v = 0; v < 3; ++v) {
+      c.adder_bits += (int64_t)(2 * q_xy + q_z + (1 + kMaxVaryings) * q_v) * wb;
+      c.add_mult(sb, r.window_int_bits + 1);
+      c.add_mult(sb, r.window_int_bits + 1);
+    }
+    c.latency += q_xy;  // a bit-serial restoring divider per quotient bit (pipelined: ii stays 1)
+  }
   c.ff_bits = c.latency * record_bits<SetupTriangle>(cfg, kMaxVaryings);
   return c;
 }
