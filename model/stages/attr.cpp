@@ -80,7 +80,7 @@ int64_t attr_window(const FxFloat& c, const FxFloat& w, int64_t size, int64_t or
                     bool* range) {
   const int A = rc.attr_subpixel_bits;  // ≥ 1 (attr_separate: A > subpixel_bits ≥ 0)
   // x·2^A = ±m_c·size·2^(e_c − e_w + A − 1) / m_w + (size + 2·origin)·2^(A − 1)
-  const i128 C = (i128)(size + 2 * origin) << (A - 1);
+  const i128 C = (i128)(size + 2 * origin) * ((i128)1 << (A - 1));  // no left shift of a negative value
   bool ovf = false;
   const i128 v = c.sig == 0 ? C
                             : rne_quotient_plus(c.neg, sig128(c) * (u128)size, c.exp - w.exp + A - 1, sig128(w), C, &ovf);
@@ -135,8 +135,8 @@ AttrSetup attr_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup
   auto grow = [&M](i128 d) { M = std::max(M, (u128)(d < 0 ? -d : d)); };
   for (int k = 1; k < 3; ++k) grow(tri.v[k].ax - ox), grow(tri.v[k].ay - oy);
   const i128 half = (i128)1 << (A - 1);
-  for (int i : {t.x0, t.x1}) grow(((i128)i << A) + half - ox);
-  for (int j : {t.y0, t.y1}) grow(((i128)j << A) + half - oy);
+  for (int i : {t.x0, t.x1}) grow((i128)i * ((i128)1 << A) + half - ox);
+  for (int j : {t.y0, t.y1}) grow((i128)j * ((i128)1 << A) + half - oy);
   // Signed bits the relative values need, with one more for the rounding below: msb + 3.
   const int need = msb_index(M) + 3;
   const int drop = std::max(0, need - rc.attr_coord_bits);  // PRECISION IS LOST HERE when > 0 (RNE)
@@ -171,13 +171,14 @@ AttrSetup attr_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup
 Plane make_attr_plane(const AttrSetup& s, const int64_t q[3]) {
   // E'_k(centre(i, j)) = a_k·((2i + 1)·2^(F−1) − ox) + b_k·((2j + 1)·2^(F−1) − oy) + c_k, anchored at (i0, j0).
   const i128 h = (i128)1 << (s.F - 1);
-  const i128 X0 = ((i128)s.i0 << s.F) + h - s.ox, Y0 = ((i128)s.j0 << s.F) + h - s.oy;
+  const i128 unit = (i128)1 << s.F;  // one pixel; products, not shifts, of signed values
+  const i128 X0 = (i128)s.i0 * unit + h - s.ox, Y0 = (i128)s.j0 * unit + h - s.oy;
   Plane p;
   p.i0 = s.i0;
   p.j0 = s.j0;
   for (int k = 0; k < 3; ++k) {
-    p.dx += (s.a[k] << s.F) * q[k];
-    p.dy += (s.b[k] << s.F) * q[k];
+    p.dx += s.a[k] * unit * q[k];
+    p.dy += s.b[k] * unit * q[k];
     p.c += (s.a[k] * X0 + s.b[k] * Y0 + s.c[k]) * q[k];
   }
   return p;
