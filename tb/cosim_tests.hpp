@@ -26,7 +26,7 @@
 
 namespace fxr::tb {
 
-// Lock-step vectors per unit: 10^6 (the product promise, SPEC §9), a few seconds under Verilator.
+// Lock-step vectors per unit: 10^6 (the product promise, docs/references.md#spec-speed), a few seconds under Verilator.
 inline constexpr uint64_t kLockStepCount = 1000000;
 inline constexpr uint64_t kLockStepSeed = 20240601;
 

@@ -14,7 +14,7 @@ struct RasterConfig {
   int subpixel_bits = 8;
   // Signed integer bits of snapped window coordinates (guard band included):
   // 16 → ±32768 px, D3D11's 16.8 range. Edge coefficients need window_int_bits + subpixel_bits + 1
-  // bits, edge values about twice that (ANCHORS: 25 and 50 bits at 16.8).
+  // bits, edge values about twice that (docs/references.md#widths: 25 and 50 bits at 16.8).
   int window_int_bits = 16;
   // Significand bits of the clipper's new x_c, y_c, z_c and varyings (w_c uses recip.in_sig_bits).
   // 32: 8 bits beyond float32 so the ½-ulp rounding of a clipped x_c moves the window

@@ -6,7 +6,7 @@
 // integer coefficients: for per-vertex integers Q_k,
 //     P(i, j) = Σ_k E_k(centre(i, j)) · Q_k = c + i·dx + j·dy           (a "plane", i128)
 // where E_k are the unbiased edge functions of setup (E_k / 2A is the barycentric weight of
-// vertex k). The perspective-correct varying is (seed 000, 004; the 2A cancels)
+// vertex k). The perspective-correct varying is (docs/references.md#seed-000-rational, #seed-004; the 2A cancels)
 //     v = Σ E_k·vw_k / Σ E_k·rw_k = N / D,
 // with vw_k = v_k/w_k and rw_k = 1/w_k. N and D are exact integer planes once the three vw_k
 // (and the three rw_k) are put on one block exponent: the only roundings are
@@ -14,7 +14,7 @@
 //       exponents of the three values differ by ≤ interp_block_bits − significand bits;
 //   (2) normalising |N| and D to the divider's num_bits / den_bits significands (RNE);
 //   (3) the divider itself (model/arith/div.hpp: RNE of its quotient to quot_bits).
-// Affine mode (InterpMode::Affine, seed 000's wrong image): vw_k holds v_k itself and D = 2A.
+// Affine mode (InterpMode::Affine, the wrong image of docs/references.md#seed-000-wrong-image): vw_k holds v_k itself and D = 2A.
 #pragma once
 
 #include <cstdint>

@@ -6,7 +6,7 @@
 // pixel centre (i + ½, j + ½) is an integer point: X = i·2^g + 2^(g−1). For subpixel_bits ≥ 1 the
 // grid is the snap grid itself; for subpixel_bits = 0 vertices are doubled (exact).
 //
-// Edge functions (seed 001). For the directed edge a → b,
+// Edge functions (docs/references.md#seed-001-edge-function). For the directed edge a → b,
 //     E(X, Y) = (y_a − y_b)·X + (x_b − x_a)·Y + (x_a·y_b − x_b·y_a)
 // which is cross(b − a, p − a): positive to the left of a → b. Edge k is the edge opposite
 // vertex k (from v_{k+1} to v_{k+2}), so E_k(v_k) = 2·area and E_0 + E_1 + E_2 = 2·area at
@@ -22,7 +22,7 @@
 // It is applied as an exact bias on the edge constant: bias = 0 on top / left edges and −1 on
 // the others, and a centre is covered iff E_k + bias_k ≥ 0 for k = 0, 1, 2 (E is an integer,
 // so E > 0 ⇔ E − 1 ≥ 0). This is D3D's rule read in y-up coordinates; llvmpipe's rule in y-up
-// coordinates makes left and bottom edges inclusive instead (ANCHORS): mirror y to compare.
+// coordinates makes left and bottom edges inclusive instead (docs/references.md#peer-fill-rule): mirror y to compare.
 #pragma once
 
 #include <cstdint>
@@ -47,7 +47,7 @@ constexpr int coord_bits(const RasterConfig& c) { return c.window_int_bits + gri
 constexpr int edge_coef_bits(const RasterConfig& c) { return coord_bits(c) + 1; }
 // Signed bits of an edge value (and of 2·area) at any point p of the coordinate range:
 // E = cross(b − a, p − a) with each component of magnitude < 2^cb, so |E| < 2·2^(2cb) and
-// 2·cb + 2 signed bits hold it (50 bits at 16.8, ANCHORS). Stepping adds no bits (every stepped
+// 2·cb + 2 signed bits hold it (50 bits at 16.8, docs/references.md#widths). Stepping adds no bits (every stepped
 // value is the exact value at a sample point); the −1 top-left bias cannot overflow either.
 constexpr int edge_value_bits(const RasterConfig& c) { return 2 * coord_bits(c) + 2; }
 // Edge values are held in int64_t.

@@ -141,7 +141,7 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
   out.rw = r;
   for (int k = 0; k < st.num_varyings; ++k) {
     if (st.interp == InterpMode::Affine) {
-      // Affine (seed 000's wrong image): v itself, at the same width (exact for float32 inputs
+      // Affine (the wrong image of docs/references.md#seed-000-wrong-image): v itself, at the same width (exact for float32 inputs
       // when varying_sig_bits ≥ 24).
       out.vw[k] = v.v[k].sig ? normalize_fx(v.v[k], rc.varying_sig_bits, Round::HalfEven) : v.v[k];
     } else {

@@ -2,7 +2,7 @@
 // viewport transform and snapping. From a clipped vertex (exact dyadic x_c, y_c, z_c, w_c,
 // varyings) and its 1/w to a SetupVertex. (project_vertex: stages 3 + 4 for one vertex.)
 //
-// Which snapping the model is (ANCHORS: float32 divide + float32 viewport formula differs from
+// Which snapping the model is (docs/references.md#snapping: float32 divide + float32 viewport formula differs from
 // exact rounding for ~3 % of vertices at 4096 px): the model snaps the EXACT value of
 // ((x_c·r + 1)·W/2 + X0)·2^subpixel_bits, r = recip(w_c) the reciprocal unit's output, with ONE
 // round to nearest even. x_c·r is an exact product: no rounding happens between the

@@ -14,7 +14,7 @@
 
 namespace fxr {
 
-// Upper bound on varyings per vertex (SPEC: 0 … at least 16).
+// Upper bound on varyings per vertex (0 … at least 16: docs/references.md#spec-raster-unit).
 inline constexpr int kMaxVaryings = 16;
 
 // One vertex as the vertex stage emits it: raw float32 values (bit patterns are kept, so a
@@ -30,7 +30,7 @@ struct ClipTriangle {
 
 enum class CullMode : uint8_t { None, Back, Front };
 enum class DepthFunc : uint8_t { Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always };
-enum class InterpMode : uint8_t { Perspective, Affine };  // Affine: seed 000's wrong image
+enum class InterpMode : uint8_t { Perspective, Affine };  // Affine: the wrong image of docs/references.md#seed-000-wrong-image
 
 // Draw state: everything besides the primitives that the unit needs. Window coordinates have
 // y up (row 0 at the bottom), pixel centres at (x + ½, y + ½).

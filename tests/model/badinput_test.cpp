@@ -1,4 +1,4 @@
-// SPEC §8 bad input for the geometry stages (1–4): each case gets defined behaviour — a
+// Bad input (docs/references.md#spec-bad-input) for the geometry stages (1–4): each case gets defined behaviour — a
 // documented discard with a reason (GeomOutcome → RasterStats counter) or exact handling —
 // never a crash, and every input primitive is accounted for.
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Stage 2, the clipper: against the rational Sutherland–Hodgman of tests/model/geom_ref.hpp
 // (0 differences expected: same plane order, exact intersections, same rounding points), the
 // symmetry that makes shared edges clip identically, watertightness of clipped meshes (with an
-// exact top-left coverage count written here), and the hard cases of SPEC §7.
+// exact top-left coverage count written here), and the hard cases of docs/references.md#spec-hard-cases.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -167,7 +167,7 @@ std::array<double, 3> rotate(const std::array<double, 3>& p, double a, double b,
 
 }  // namespace
 
-// SPEC §7: shared edges (no pixel twice, none missed) after clipping. The eye sits inside a
+// docs/references.md#spec-hard-cases: shared edges (no pixel twice, none missed) after clipping. The eye sits inside a
 // tessellated box, so every view ray meets the mesh exactly once in front of the eye: each
 // pixel must be covered exactly once. Triangles behind the eye cross w = 0 and the near
 // plane; the side walls run far beyond the guard band.
@@ -228,7 +228,7 @@ TEST(Clip, BoxAroundTheEyeCoversEveryPixelExactlyOnce) {
   EXPECT_GT(total.clip_vertices_created, 200u);
 }
 
-// SPEC §7: a near plane very close to the eye (n = 1e-7 … 1e-3 of the scene scale).
+// docs/references.md#spec-hard-cases: a near plane very close to the eye (n = 1e-7 … 1e-3 of the scene scale).
 TEST(Clip, NearPlaneVeryCloseToTheEye) {
   std::mt19937_64 rng(15);
   std::uniform_real_distribution<double> u(-3, 3), ze(-5, 0.5);
@@ -248,7 +248,7 @@ TEST(Clip, NearPlaneVeryCloseToTheEye) {
   EXPECT_GT(c.stats.prims_clipped, 300u);
 }
 
-// SPEC §7: triangles crossing w = 0, with one or two vertices behind the eye.
+// docs/references.md#spec-hard-cases: triangles crossing w = 0, with one or two vertices behind the eye.
 TEST(Clip, TrianglesCrossingWZeroWithOneOrTwoVerticesBehind) {
   std::mt19937_64 rng(16);
   std::uniform_real_distribution<double> front(0.5, 20), behind(-20, -1e-3);
@@ -275,7 +275,7 @@ TEST(Clip, TrianglesCrossingWZeroWithOneOrTwoVerticesBehind) {
   EXPECT_GT(c.stats.prims_clipped, 1000u);
 }
 
-// SPEC §7: triangles far larger than the viewport are clipped to the guard band; every
+// docs/references.md#spec-hard-cases: triangles far larger than the viewport are clipped to the guard band; every
 // snapped coordinate fits the window format.
 TEST(Clip, TrianglesFarLargerThanTheViewportAreClippedToTheGuardBand) {
   std::mt19937_64 rng(17);
@@ -303,7 +303,7 @@ TEST(Clip, TrianglesFarLargerThanTheViewportAreClippedToTheGuardBand) {
   EXPECT_GT(emitted, 100);
 }
 
-// SPEC §7: vertices exactly on planes are inside and create no vertex (z = 0, z = w, x on the
+// docs/references.md#spec-hard-cases: vertices exactly on planes are inside and create no vertex (z = 0, z = w, x on the
 // guard band: with W = 256, X0 = 0, L = 32767 the band is x_n ∈ [−65790/256, 65278/256], exact
 // in float32).
 TEST(Clip, VerticesExactlyOnPlanesCreateNoVertices) {
@@ -350,7 +350,7 @@ TEST(Clip, TrivialRejectOutsideOnePlane) {
 
 namespace {
 
-// The ideal pipeline in double (SPEC §4): same planes and plane order, intersections and divide
+// The ideal pipeline in double (docs/references.md#spec-error-measure): same planes and plane order, intersections and divide
 // in double, no snapping. Returns the unsnapped window polygon (x, y in subpixel units, z_n).
 struct DV {
   double p[4];

@@ -1,5 +1,5 @@
 // Stages 1, 3 and 4 (input conversion, reciprocal + perspective divide, viewport + snap) against
-// the GMP reference of tests/model/geom_ref.hpp, plus the hard cases of SPEC §7 that concern
+// the GMP reference of tests/model/geom_ref.hpp, plus the hard cases of docs/references.md#spec-hard-cases that concern
 // them. Expected values never come from the code under test.
 #include <gtest/gtest.h>
 
@@ -70,7 +70,7 @@ TEST(Geometry, SnapIsExactForRandomViewportsAndFormats) {
   EXPECT_EQ(diffs, 0);
 }
 
-// ANCHORS: "float32 divide + float32 viewport formula snaps differently from exact rational
+// docs/references.md#snapping: "float32 divide + float32 viewport formula snaps differently from exact rational
 // round-to-nearest for about 3 % of random vertices at 4096 px". Measured here for the model's
 // choice (exact snap of x_c·rcp(w)) and for the float32 formula, both against the exact snap of
 // x_c / w_c. Reported, and bounded: the model never differs by more than one subpixel.
@@ -129,7 +129,7 @@ TEST(Geometry, TrivialAcceptPassesTriangleThroughAndCounts) {
   EXPECT_EQ(q_of(out[0].v[0].rw), frac(1, 2));
 }
 
-// SPEC §7: w ratios of 10^4 and more inside one triangle.
+// docs/references.md#spec-hard-cases: w ratios of 10^4 and more inside one triangle.
 TEST(Geometry, WRatiosOf1e4AndMoreInOneTriangle) {
   Config cfg;
   std::mt19937_64 rng(4);
@@ -152,7 +152,7 @@ TEST(Geometry, WRatiosOf1e4AndMoreInOneTriangle) {
   EXPECT_EQ(diffs, 0);
 }
 
-// SPEC §7: depth near 0 and near 1 (z_c = 0, tiny, z_c = w, one ulp below w).
+// docs/references.md#spec-hard-cases: depth near 0 and near 1 (z_c = 0, tiny, z_c = w, one ulp below w).
 TEST(Geometry, DepthNearZeroAndNearOne) {
   Config cfg;
   const DrawState st = state(256, 256);
@@ -181,7 +181,7 @@ TEST(Geometry, DepthNearZeroAndNearOne) {
   }
 }
 
-// Varyings with large magnitudes and ranges (SPEC §7), both interpolation modes.
+// Varyings with large magnitudes and ranges (docs/references.md#spec-hard-cases), both interpolation modes.
 TEST(Geometry, VaryingsWithLargeMagnitudesMatchReference) {
   Config cfg;
   std::mt19937_64 rng(5);

@@ -1,7 +1,7 @@
 // Stages 7 and 9 (interpolators and divider): perspective-correct varyings against the exact
 // rational value from the SAME quantised per-vertex inputs (GMP), with the error bound derived
 // in docs/pipeline.md (stage 9) asserted per fragment, and against the true value from the
-// unquantised vertex data; affine mode against its own exact value and seed 000's prediction.
+// unquantised vertex data; affine mode against its own exact value and the prediction of docs/references.md#seed-000-wrong-image.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -304,7 +304,7 @@ TEST(Interp, AffineModeIsTheScreenLinearValueAndDiffersAsSeed000Predicts) {
       return -1.0;
     };
     const double va = at(sa), vp = at(sp);
-    // Affine: the average of the corners (seed 000); perspective: Σ (v/w) / Σ (1/w).
+    // Affine: the average of the corners (docs/references.md#seed-000-wrong-image); perspective: Σ (v/w) / Σ (1/w).
     EXPECT_NEAR(va, 0.5, 1e-7);
     const double want_p = (0 / 1.0 + 1 / ratio + 0.5 / std::sqrt(ratio)) / (1 + 1 / ratio + 1 / std::sqrt(ratio));
     EXPECT_NEAR(vp, want_p, 1e-6);

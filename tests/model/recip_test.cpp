@@ -90,7 +90,7 @@ TEST(Recip, ValidSmallConfigsAreCorrectlyRoundedAtOtherWidths) {
 }
 
 TEST(Recip, MeasureAgreesWithIndependentCountOnANonFaithfulDesign) {
-  // 32×7 seed + 2 NR without correction (ANCHORS.md: 94.5 % correctly rounded), a 30-bit datapath.
+  // 32×7 seed + 2 NR without correction (docs/references.md#recip-designs: 94.5 % correctly rounded), a 30-bit datapath.
   const RecipConfig cfg = small_config(24, 24, 5, 7, 2, 30, RecipCorrection::None);
   const Exhaustive r = check_all(cfg);
   const ErrorStats st = measure(cfg);
