@@ -13,6 +13,7 @@
 #include "model/stages/attr.hpp"
 #include "model/unit/backend.hpp"
 #include "model/unit/geometry.hpp"
+#include "analysis/error_stats.hpp"
 #include "reference/reference.hpp"
 
 namespace fxr {
@@ -217,16 +218,14 @@ std::string ErrSummary::str(int prec) const {
 }
 
 ErrSummary summarize(std::vector<double> v) {
+  ErrStat e;  // the reports' statistics (nearest-rank percentiles), negatives left out
+  for (double x : v)
+    if (x >= 0) e.add(x);
   ErrSummary s;
-  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !(x >= 0) || !std::isfinite(x); }), v.end());
-  s.n = v.size();
-  if (v.empty()) return s;
-  double sum = 0;
-  for (double x : v) sum += x, s.max = std::max(s.max, x);
-  s.mean = sum / (double)v.size();
-  const size_t k = std::min(v.size() - 1, (size_t)std::ceil(0.99 * (double)v.size()) - 1);
-  std::nth_element(v.begin(), v.begin() + (long)k, v.end());
-  s.p99 = v[k];
+  s.n = e.n;
+  s.max = e.max;
+  s.mean = e.mean();
+  s.p99 = e.pct(0.99);
   return s;
 }
 

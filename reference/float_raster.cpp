@@ -9,20 +9,6 @@ namespace fxr::peer {
 
 namespace {
 
-bool depth_pass(DepthFunc f, float z, float stored) {
-  switch (f) {
-    case DepthFunc::Never: return false;
-    case DepthFunc::Less: return z < stored;
-    case DepthFunc::Equal: return z == stored;
-    case DepthFunc::LessEqual: return z <= stored;
-    case DepthFunc::Greater: return z > stored;
-    case DepthFunc::NotEqual: return z != stored;
-    case DepthFunc::GreaterEqual: return z >= stored;
-    case DepthFunc::Always: return true;
-  }
-  return false;
-}
-
 // Outcode bit per clip plane −w ≤ x ≤ w, −w ≤ y ≤ w, 0 ≤ z ≤ w.
 unsigned outcode(const float* p) {
   const float x = p[0], y = p[1], z = p[2], w = p[3];
@@ -111,7 +97,7 @@ void float_raster(const DrawState& st, const std::vector<ClipTriangle>& tris, Fl
         const float z = l0 * *Zs[0] + l1 * *Zs[1] + l2 * *Zs[2];
         const size_t o = (size_t)py * W + px;
         if (st.depth_test) {
-          if (!depth_pass(st.depth_func, z, f.depth[o])) continue;
+          if (!depth_compare(st.depth_func, z, f.depth[o])) continue;
           if (st.depth_write) f.depth[o] = z;
         }
         ++f.fragments_passed;

@@ -8,6 +8,8 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "model/stages/setup.hpp"
+
 namespace fxr {
 
 namespace {
@@ -43,20 +45,6 @@ struct Win {
   double vw[kMaxVaryings];      // v/w (perspective) or v (affine)
 };
 
-bool depth_pass(DepthFunc f, double z, double buf) {
-  switch (f) {
-    case DepthFunc::Never: return false;
-    case DepthFunc::Less: return z < buf;
-    case DepthFunc::Equal: return z == buf;
-    case DepthFunc::LessEqual: return z <= buf;
-    case DepthFunc::Greater: return z > buf;
-    case DepthFunc::NotEqual: return z != buf;
-    case DepthFunc::GreaterEqual: return z >= buf;
-    case DepthFunc::Always: return true;
-  }
-  return false;
-}
-
 double edge(const Win& a, const Win& b, double x, double y) {
   return (a.y - b.y) * x + (b.x - a.x) * y + a.x * b.y - b.x * a.y;
 }
@@ -70,15 +58,12 @@ RefFrame run_reference(const DrawState& st, const std::vector<ClipTriangle>& tri
   f.depth.assign((size_t)f.width * f.height, 1.0);
   const int nv = st.num_varyings;
   const bool affine = st.interp == InterpMode::Affine;
-  // Sample rectangle [x0, x1) × [y0, y1): the viewport ∩ scissor, in window pixels.
+  // Sample rectangle [x0, x1) × [y0, y1): the viewport ∩ scissor, in window pixels. The model's
+  // draw_rect (inclusive bounds) is the draw state's meaning, shared: the reference checks the
+  // arithmetic, not how a scissor is read.
   const int vx = st.viewport_x, vy = st.viewport_y;
-  int x0 = vx, y0 = vy, x1 = vx + f.width, y1 = vy + f.height;
-  if (st.scissor_w >= 0 && st.scissor_h >= 0) {
-    x0 = std::max(x0, st.scissor_x);
-    y0 = std::max(y0, st.scissor_y);
-    x1 = std::min(x1, st.scissor_x + st.scissor_w);
-    y1 = std::min(y1, st.scissor_y + st.scissor_h);
-  }
+  const PixelRect dr = draw_rect(st);
+  const int x0 = dr.x0, y0 = dr.y0, x1 = dr.x1 + 1, y1 = dr.y1 + 1;
   for (size_t prim = 0; prim < tris.size(); ++prim) {
     ++f.stats.prims_in;
     std::vector<DVert> poly(3);
@@ -172,7 +157,7 @@ RefFrame run_reference(const DrawState& st, const std::vector<ClipTriangle>& tri
             fr.var[k] = affine ? num : num / rw;
           }
           double& buf = f.depth[(size_t)(py - vy) * f.width + (px - vx)];
-          if (!st.depth_test || depth_pass(st.depth_func, fr.depth, buf)) {
+          if (!st.depth_test || depth_compare(st.depth_func, fr.depth, buf)) {
             ++f.stats.fragments_depth_pass;
             if (st.depth_test && st.depth_write) buf = fr.depth;
             f.fragments.push_back(fr);

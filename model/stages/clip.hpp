@@ -106,16 +106,7 @@ ClipPolygon clip_triangle(const GuardBand& gb, const ClipWidths& cw, const ClipV
 
 // Stage 2 output: one triangle inside the clip volume (an input triangle accepted whole, or one
 // triangle of the fan of a clipped polygon). Only the active varyings are set.
-struct ClippedTriangle {
-  uint32_t prim = 0;
-  ClipVtx v[3];
-
-  template <class V>
-  void visit(V& v_, const RecordShape& s) {
-    v_("prim", prim, kPrimIdBits, false);
-    for (int i = 0; i < 3; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s);
-  }
-};
+using ClippedTriangle = ClipSpaceTriangle;
 
 enum class ClipOutcome : uint8_t {
   Accepted,          // trivial accept: the input triangle, unchanged (1 output)

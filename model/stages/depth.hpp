@@ -17,21 +17,6 @@
 
 namespace fxr {
 
-// Contract: the depth comparison `incoming func stored` (GL / D3D semantics).
-inline bool depth_compare(DepthFunc f, uint32_t incoming, uint32_t stored) {
-  switch (f) {
-    case DepthFunc::Never: return false;
-    case DepthFunc::Less: return incoming < stored;
-    case DepthFunc::Equal: return incoming == stored;
-    case DepthFunc::LessEqual: return incoming <= stored;
-    case DepthFunc::Greater: return incoming > stored;
-    case DepthFunc::NotEqual: return incoming != stored;
-    case DepthFunc::GreaterEqual: return incoming >= stored;
-    case DepthFunc::Always: return true;
-  }
-  return false;
-}
-
 // ---- the stage ------------------------------------------------------------------------------
 
 // The depth buffer a DepthStage tests against: w × h codes, row 0 at the bottom, indexed from

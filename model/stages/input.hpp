@@ -52,8 +52,10 @@ struct InputTriangle {
   }
 };
 
-// Stage 1 output: the same primitive as exact FxFloats (only the active varyings are set).
-struct ExactTriangle {
+// Three exact clip-space vertices of one primitive (only the active varyings are set): the
+// record at the input-conversion → clipper boundary (ExactTriangle) and at the clipper → recip
+// boundary (ClippedTriangle: a triangle inside the clip volume).
+struct ClipSpaceTriangle {
   uint32_t prim = 0;
   ClipVtx v[3];
 
@@ -63,6 +65,9 @@ struct ExactTriangle {
     for (int i = 0; i < 3; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s);
   }
 };
+
+// Stage 1 output: the primitive as exact FxFloats.
+using ExactTriangle = ClipSpaceTriangle;
 
 enum class ConvertOutcome : uint8_t {
   Emitted,

@@ -79,10 +79,7 @@ struct PlaneSample {
   template <class V>
   void visit(V& v, const RecordShape& s) {
     const RasterConfig& r = s.cfg.raster;
-    v("prim", prim, kPrimIdBits, false);
-    v("x", x, r.window_int_bits, true);
-    v("y", y, r.window_int_bits, true);
-    v("depth", depth, r.depth_bits(), false);
+    visit_pixel_fields(v, s, prim, x, y, depth);
     v("den", den, interp_plane_bits(r), true);
     v("den_exp", den_exp, fx_exp_field_bits(s.cfg), true);
     for (int m = 0; m < s.num_varyings; ++m) {

@@ -30,6 +30,24 @@ struct ClipTriangle {
 
 enum class CullMode : uint8_t { None, Back, Front };
 enum class DepthFunc : uint8_t { Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always };
+
+// Contract: the depth comparison `incoming func stored` (GL / D3D semantics) on any ordered
+// type: the model's unorm codes, the double reference's and the float rasterizer's depths. One
+// table for all: it is the draw state's meaning, not arithmetic the references must check.
+template <class T>
+inline bool depth_compare(DepthFunc f, T incoming, T stored) {
+  switch (f) {
+    case DepthFunc::Never: return false;
+    case DepthFunc::Less: return incoming < stored;
+    case DepthFunc::Equal: return incoming == stored;
+    case DepthFunc::LessEqual: return incoming <= stored;
+    case DepthFunc::Greater: return incoming > stored;
+    case DepthFunc::NotEqual: return incoming != stored;
+    case DepthFunc::GreaterEqual: return incoming >= stored;
+    case DepthFunc::Always: return true;
+  }
+  return false;
+}
 enum class InterpMode : uint8_t { Perspective, Affine };  // Affine: the wrong image of docs/references.md#seed-000-wrong-image
 
 // Draw state: everything besides the primitives that the unit needs. Window coordinates have
@@ -52,20 +70,27 @@ namespace fxr {
 
 // One fragment leaving the unit. depth is the D16 / D24 unorm code; var[k] is the
 // perspective-correct varying as a normalised FxFloat (raster.varying_out_sig_bits).
+// The fields every per-pixel record starts with. Widths: pixel indices are signed
+// raster.window_int_bits, depth codes raster.depth_bits().
+template <class V>
+void visit_pixel_fields(V& v, const RecordShape& s, uint32_t& prim, int32_t& x, int32_t& y, uint32_t& depth) {
+  const RasterConfig& r = s.cfg.raster;
+  v("prim", prim, kPrimIdBits, false);
+  v("x", x, r.window_int_bits, true);
+  v("y", y, r.window_int_bits, true);
+  v("depth", depth, r.depth_bits(), false);
+}
+
 struct Fragment {
   int32_t x = 0, y = 0;  // pixel (column, row), row 0 at the bottom
   uint32_t depth = 0;
   uint32_t prim = 0;
   FxFloat var[kMaxVaryings];
 
-  // Widths: pixel indices are signed raster.window_int_bits, depth codes raster.depth_bits().
   template <class V>
   void visit(V& v, const RecordShape& s) {
     const RasterConfig& r = s.cfg.raster;
-    v("prim", prim, kPrimIdBits, false);
-    v("x", x, r.window_int_bits, true);
-    v("y", y, r.window_int_bits, true);
-    v("depth", depth, r.depth_bits(), false);
+    visit_pixel_fields(v, s, prim, x, y, depth);
     for (int k = 0; k < s.num_varyings; ++k) visit_fx(v, "var" + std::to_string(k), var[k], r.varying_out_sig_bits, s);
   }
 };

@@ -44,11 +44,11 @@ void emit_sv_vector_layout(std::ostream& os, const std::string& unit, const VecL
   os << "  localparam int " << p << "OutWordBits = " << ob << ";  // outputs: the low bits\n";
   // Mask of the output part without its padding: (outputs & mask) is 0 in every padding bit even
   // when a testbench leaves the padding fields undriven (X & 0 = 0).
-  std::string mask((size_t)(ob + 3) / 4, '0');
+  std::string mask((size_t)(ob + kVecBitsPerDigit - 1) / kVecBitsPerDigit, '0');
   for (int i : l.outputs())
     for (int b = l[(size_t)i].offset; b < l[(size_t)i].offset + l[(size_t)i].width; ++b) {
-      char& c = mask[mask.size() - 1 - (size_t)(b / 4)];
-      const int v = (c <= '9' ? c - '0' : c - 'a' + 10) | (1 << (b % 4));
+      char& c = mask[mask.size() - 1 - (size_t)(b / kVecBitsPerDigit)];
+      const int v = (c <= '9' ? c - '0' : c - 'a' + 10) | (1 << (b % kVecBitsPerDigit));
       c = (char)(v < 10 ? '0' + v : 'a' + v - 10);
     }
   os << "  localparam logic [" << ob - 1 << ":0] " << p << "OutMask = " << ob << "'h" << mask << ";\n";
