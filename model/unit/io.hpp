@@ -28,6 +28,12 @@ struct ClipTriangle {
   ClipVertex v[3];
 };
 
+// A line segment (GL_LINES: independent pairs of vertices): v[0] is the first vertex (p_a of
+// the diamond-exit rule). docs/lines.md.
+struct ClipLine {
+  ClipVertex v[2];
+};
+
 enum class CullMode : uint8_t { None, Back, Front };
 enum class DepthFunc : uint8_t { Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always };
 
@@ -95,6 +101,35 @@ struct Fragment {
   }
 };
 
+// Line segments (docs/lines.md, "The line path"): every input segment ends in exactly one of
+// drawn, culled or rejected (in == drawn + culled + rejected is asserted by tests). Kept apart
+// from the triangle counters so that a draw without lines reports exactly what it did before.
+struct LineStats {
+  uint64_t in = 0;
+  uint64_t trivial_accept = 0;   // no clipping needed
+  uint64_t clipped = 0;          // went through the segment clipper (then drawn or culled)
+  uint64_t clip_vertices_created = 0;
+  uint64_t drawn = 0;            // at least one pixel inside viewport ∩ scissor
+  uint64_t culled_outside = 0;   // trivially rejected or clipped away entirely
+  uint64_t culled_no_pixels = 0; // snapped segment covers no pixel of viewport ∩ scissor (zero length included)
+  uint64_t rejected_nan = 0;     // a NaN in position or varying
+  uint64_t rejected_inf = 0;     // an infinity
+  uint64_t rejected_range = 0;   // finite but beyond a format's range (documented)
+  uint64_t fragments_generated = 0;  // covered pixels inside viewport ∩ scissor (also counted in RasterStats)
+
+  template <class V>
+  void visit(V& v) {
+#define FXR_STAT(n) v(#n, n)
+    FXR_STAT(in); FXR_STAT(trivial_accept); FXR_STAT(clipped); FXR_STAT(clip_vertices_created);
+    FXR_STAT(drawn); FXR_STAT(culled_outside); FXR_STAT(culled_no_pixels); FXR_STAT(rejected_nan);
+    FXR_STAT(rejected_inf); FXR_STAT(rejected_range); FXR_STAT(fragments_generated);
+#undef FXR_STAT
+  }
+  uint64_t accounted() const {
+    return drawn + culled_outside + culled_no_pixels + rejected_nan + rejected_inf + rejected_range;
+  }
+};
+
 // Every input primitive ends in exactly one of: drawn, culled_* or rejected_*
 // (prims_in == prims_drawn + Σ culled + Σ rejected is asserted by tests).
 struct RasterStats {
@@ -114,6 +149,10 @@ struct RasterStats {
   uint64_t fragments_generated = 0;      // covered samples
   uint64_t fragments_depth_pass = 0;
   uint64_t fragments_depth_fail = 0;
+  // Line segments (their own accounting; their fragments also count in fragments_* above).
+  // Not in visit(): the JSON of a draw without lines stays as it was; stats_json adds "lines"
+  // when lines.in > 0.
+  LineStats lines;
 
   template <class V>
   void visit(V& v) {

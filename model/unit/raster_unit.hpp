@@ -20,4 +20,10 @@ struct FrameOutput {
 // depth buffer cleared to the maximum code. Integer arithmetic only; deterministic.
 FrameOutput run_raster_unit(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris);
 
+// Contract: the triangles as above, then the line segments (docs/lines.md, model/unit/line_chain.hpp)
+// with draw state `line_st` (same viewport; its depth and interpolation fields apply to the
+// lines) into the same frame and depth buffer; segment k is primitive tris.size() + k.
+FrameOutput run_raster_unit(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
+                            const DrawState& line_st, const std::vector<ClipLine>& lines);
+
 }  // namespace fxr
