@@ -69,6 +69,12 @@ json stats_json(RasterStats s) {
   json j = json::object();
   auto v = [&](const char* name, uint64_t value) { j[name] = value; };
   s.visit(v);
+  if (s.lines.in > 0) {  // only a draw with lines has them (the JSON of others is unchanged)
+    json l = json::object();
+    auto lv = [&](const char* name, uint64_t value) { l[name] = value; };
+    s.lines.visit(lv);
+    j["lines"] = l;
+  }
   return j;
 }
 
@@ -175,6 +181,7 @@ SpotChecks exact_spot_checks(const Scene& sc, const FrameOutput& fo, int n) {
   const IdealJudge judge(sc.state, sc.tris);
   for (size_t i = 0; i < fo.fragments.size(); i += step) {
     const Fragment& f = fo.fragments[i];
+    if (f.prim >= sc.tris.size()) continue;  // line fragments: checked by tests/model/line_path_test
     // Level 1: exact on the model's own quantised triangle (analysis/ideal.hpp, snapped_at).
     const IdealValue own = snapped_at(sc.config, sc.state, sc.tris[f.prim], f.x, f.y);
     if (!own.valid) {

@@ -18,6 +18,10 @@ Image paint(const Scene& sc, const std::vector<Frag>& frags, Texel texel) {
   for (const auto& f : frags) {
     const int x = f.x - st.viewport_x, y = f.y - st.viewport_y;
     if (x < 0 || y < 0 || x >= img.width || y >= img.height) continue;
+    if (f.prim >= sc.tris.size()) {  // a line segment (primitives after the triangles): flat colour
+      img.at(x, y) = sc.line_color;
+      continue;
+    }
     img.at(x, y) = sc.u_varying < 0 || sc.v_varying < 0
                        ? pack_rgba(192, 192, 192)  // no texture coordinates: flat grey
                        : texture_fetch(tex, texel(f, sc.u_varying, tex.image.width),

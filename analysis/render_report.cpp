@@ -26,7 +26,7 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
   std::filesystem::create_directories(o.out);
   using clk = std::chrono::steady_clock;
   auto t0 = clk::now();
-  const FrameOutput fo = run_raster_unit(sc.config, sc.state, sc.tris);
+  const FrameOutput fo = run_raster_unit(sc.config, sc.state, sc.tris, sc.line_state, sc.lines);
   auto t1 = clk::now();
   const RefFrame rf = run_reference(sc.state, sc.tris);
   auto t2 = clk::now();
@@ -44,7 +44,8 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
     st2.interp = o.affine ? InterpMode::Perspective : InterpMode::Affine;
     Scene sc2 = sc;
     sc2.state = st2;
-    const FrameOutput fo2 = run_raster_unit(sc.config, st2, sc.tris);
+    sc2.line_state.interp = st2.interp;
+    const FrameOutput fo2 = run_raster_unit(sc.config, st2, sc.tris, sc2.line_state, sc.lines);
     const Image img2 = shade_model(sc2, fo2);
     const std::string name = o.affine ? "image_perspective.png" : "image_affine.png";
     write_png(o.out + "/" + name, img2);
@@ -77,11 +78,16 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
   const uint64_t accounted = s.prims_drawn + s.prims_culled_outside + s.prims_culled_zero_area +
                              s.prims_culled_backface + s.prims_culled_no_samples + s.prims_rejected_nan +
                              s.prims_rejected_inf + s.prims_rejected_range;
+  const LineStats& ls = s.lines;
+  const bool lines_accounted = ls.accounted() == ls.in && ls.in == sc.lines.size();
+  uint64_t line_frags_written = 0;
+  for (const Fragment& f : fo.fragments) line_frags_written += f.prim >= sc.tris.size();
 
   json stats = {{"scene", sc.name}, {"source", sc.source}, {"viewport", {sc.state.viewport_w, sc.state.viewport_h}},
                 {"interp", sc.state.interp == InterpMode::Affine ? "affine" : "perspective"},
                 {"triangles", sc.tris.size()}, {"model", stats_json(s)}, {"reference", ref_stats_json(rf.stats)},
-                {"all_primitives_accounted", accounted == s.prims_in && s.prims_in == sc.tris.size()}};
+                {"all_primitives_accounted", accounted == s.prims_in && s.prims_in == sc.tris.size() && lines_accounted}};
+  if (!sc.lines.empty()) stats["lines"] = sc.lines.size();
   write_text(o.out + "/stats.json", stats.dump(2) + "\n");
 
   const int nv = sc.state.num_varyings;
@@ -142,6 +148,30 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
      << s.prims_rejected_range << " | " << rf.stats.prims_rejected_nonfinite << " (non-finite) |\n";
   md << "| fragments generated | " << s.fragments_generated << " | " << rf.stats.fragments_generated << " |\n";
   md << "| fragments passing depth | " << s.fragments_depth_pass << " | " << rf.stats.fragments_depth_pass << " |\n\n";
+  if (!sc.lines.empty()) {
+    md << "## Lines\n\n" << sc.lines.size() << " segments drawn after the triangles (rule `"
+       << (sc.config.line.rule == LineRule::Midpoint ? "midpoint" : "diamond_exit") << "`"
+       << (sc.config.line.rule == LineRule::Midpoint
+               ? std::string(", endpoints `") + (sc.config.line.endpoints == LineEndpoints::HalfOpen ? "half_open" : "closed") + "`"
+               : std::string())
+       << "; depth test " << (sc.line_state.depth_test ? "on" : "off") << "; docs/lines.md), primitives "
+       << sc.tris.size() << "…" << sc.tris.size() + sc.lines.size() - 1 << " in the fragment dump.\n\n"
+       << "| | triangles | lines |\n|---|---|---|\n"
+       << "| in | " << s.prims_in << " | " << ls.in << " |\n"
+       << "| drawn | " << s.prims_drawn << " | " << ls.drawn << " |\n"
+       << "| trivially accepted / clipped | " << s.prims_trivial_accept << " / " << s.prims_clipped << " | "
+       << ls.trivial_accept << " / " << ls.clipped << " |\n"
+       << "| clip vertices created | " << s.clip_vertices_created << " | " << ls.clip_vertices_created << " |\n"
+       << "| culled: outside | " << s.prims_culled_outside << " | " << ls.culled_outside << " |\n"
+       << "| culled: no samples / no pixels | " << s.prims_culled_no_samples << " | " << ls.culled_no_pixels << " |\n"
+       << "| rejected: NaN / Inf / range | " << s.prims_rejected_nan << " / " << s.prims_rejected_inf << " / "
+       << s.prims_rejected_range << " | " << ls.rejected_nan << " / " << ls.rejected_inf << " / " << ls.rejected_range << " |\n"
+       << "| fragments generated | " << s.fragments_generated - ls.fragments_generated << " | " << ls.fragments_generated << " |\n"
+       << "| fragments written (passed depth) | " << fo.fragments.size() - line_frags_written << " | " << line_frags_written << " |\n\n"
+       << "Every segment accounted for (drawn + culled + rejected = in): **" << (lines_accounted ? "yes" : "NO")
+       << "**. The error figures below are the triangles'; the line path is checked against exact references "
+          "by tests/model/line_path_test.cpp.\n\n";
+  }
   md << "Every primitive accounted for (drawn + culled + rejected = in): **"
      << (stats["all_primitives_accounted"].get<bool>() ? "yes" : "NO") << "** (" << accounted << " of " << s.prims_in << ").\n\n";
   md << "## Error against the double reference\n\n"
@@ -215,7 +245,7 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
   r.err = err;
   r.spot = spot;
   r.cov = cov;
-  r.all_accounted = accounted == s.prims_in && s.prims_in == sc.tris.size();
+  r.all_accounted = accounted == s.prims_in && s.prims_in == sc.tris.size() && lines_accounted;
   return r;
 }
 

@@ -21,7 +21,7 @@ using nlohmann::json;
 
 struct Opts {
   std::string scene, out, config;
-  bool use_default = false, affine = false, no_bunny = false, no_affine_image = false, quiet = false;
+  bool use_default = false, wireframe = false, affine = false, no_bunny = false, no_affine_image = false, quiet = false;
   int width = 0, height = 0, spot_checks = 2000;
 };
 
@@ -115,6 +115,10 @@ int run_into(const Opts& o, const fs::path& tmp) {
   so.width = o.width;
   so.height = o.height;
   so.no_optional = o.no_bunny;
+  so.wireframe = o.wireframe;
+  if (o.wireframe && !o.use_default)
+    throw fxr::ConfigError("--wireframe selects the default scene's wireframe variant: give it with --default "
+                           "(a scene file gives its own \"lines\" objects or mesh \"wireframe\")");
   fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.scene, so);
   if (!o.config.empty()) {
     // --config F: its fields override the scene's configuration (unit by unit, field by field).
@@ -124,7 +128,7 @@ int run_into(const Opts& o, const fs::path& tmp) {
     merged.merge_patch(cj);
     sc.config = fxr::config_from_json(merged, o.config);
   }
-  if (o.affine) sc.state.interp = fxr::InterpMode::Affine;
+  if (o.affine) sc.state.interp = sc.line_state.interp = fxr::InterpMode::Affine;
   check_image_sizes(sc, o.no_affine_image, o.use_default ? "<default scene>" : o.scene);
   for (const auto& n : sc.notes) std::cerr << "fxraster render: note: " << n << "\n";
 
@@ -137,6 +141,7 @@ int run_into(const Opts& o, const fs::path& tmp) {
   const int nv = sc.state.num_varyings;
   if (!o.quiet) {
     std::cout << "fxraster render: " << sc.name << "\n  " << sc.tris.size() << " triangles, "
+              << (sc.lines.empty() ? std::string() : std::to_string(sc.lines.size()) + " lines, ")
               << r.fragments << " fragments written; model " << r.model_seconds
               << " s, reference " << r.reference_seconds << " s\n";
     for (int k = 0; k < nv; ++k)
@@ -158,6 +163,9 @@ fxr::app::Runner setup(CLI::App& sub) {
                                   "image_affine.png, side_by_side.png, fragments.csv/.json, stats.json, "
                                   "report.md/.json")
       ->required();
+  sub.add_flag("--wireframe", o->wireframe,
+               "with --default: add the wireframe of the checkerboard face and the bunny's silhouette edges as "
+               "line segments (docs/lines.md)");
   sub.add_option("--config", o->config, "configuration JSON whose fields override the scene's configuration");
   sub.add_flag("--affine", o->affine, "interpolate varyings affinely in screen space (the wrong image of docs/references.md#seed-000) "
                                       "for the main image; the extra image is then the perspective one");

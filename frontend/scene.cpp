@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <unordered_map>
 
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
@@ -361,7 +362,11 @@ ClipVertex emit_vertex(const glm::dmat4& pvm, const glm::dvec3& p, const glm::dv
 void parse_mesh(const Node& o, Scene& sc, const glm::dmat4& pv, const std::string& base_dir,
                 const SceneOptions& opt) {
   o.expect_object({"type", "name", "obj", "positions", "texcoords", "indices", "model", "texgen", "texgen_axis",
-                   "uv_scale", "uv_offset", "optional"});
+                   "uv_scale", "uv_offset", "optional", "wireframe"});
+  enum class Wire { None, Edges, Silhouette };
+  Wire wire = Wire::None;
+  if (o.has("wireframe"))
+    wire = o.at("wireframe").choice<Wire>({{"none", Wire::None}, {"edges", Wire::Edges}, {"silhouette", Wire::Silhouette}});
   const bool optional = o.has("optional") && o.at("optional").boolean();
   SceneObjectInfo info;
   info.kind = "mesh";
@@ -444,16 +449,57 @@ void parse_mesh(const Node& o, Scene& sc, const glm::dmat4& pv, const std::strin
   const int nv = sc.state.num_varyings;
   const int u_var = sc.u_varying < nv ? sc.u_varying : -1, v_var = sc.v_varying < nv ? sc.v_varying : -1;
   info.first_prim = (uint32_t)sc.tris.size();
+  // Wireframe: every edge once (first-seen order and direction), with the vertices of the first
+  // triangle that has it. Facing of a triangle for silhouettes: the sign of its window-space
+  // area from the double clip coordinates (0 when a w ≤ 0 or the area is 0: never a silhouette
+  // side). An edge is a silhouette when its two triangles face opposite ways, or when it has one.
+  struct Edge {
+    ClipLine line;
+    int facing[2] = {0, 0};
+    int count = 0;
+  };
+  std::vector<Edge> edges;
+  std::unordered_map<uint64_t, size_t> edge_of;
   for (const auto& t : m.tri) {
     ClipTriangle ct;
+    glm::dvec4 c[3];
     for (int k = 0; k < 3; ++k) {
       const glm::dvec3 p = m.pos[t[k]];
       glm::dvec2 uv = tg == TexGen::Auto ? m.uv[t[k]] : texgen(tg, permute_axis((p - centre) / radius, axis));
       uv = uv * scale + offset;
       ct.v[k] = emit_vertex(pvm, p, uv, u_var, v_var);
+      c[k] = pvm * glm::dvec4(p, 1.0);
     }
     sc.tris.push_back(ct);
+    if (wire == Wire::None) continue;
+    int facing = 0;
+    if (c[0].w > 0 && c[1].w > 0 && c[2].w > 0) {
+      const glm::dvec2 a(c[0].x / c[0].w, c[0].y / c[0].w), b(c[1].x / c[1].w, c[1].y / c[1].w),
+          d(c[2].x / c[2].w, c[2].y / c[2].w);
+      const double area = (b.x - a.x) * (d.y - a.y) - (d.x - a.x) * (b.y - a.y);
+      facing = area > 0 ? 1 : area < 0 ? -1 : 0;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t i0 = t[k], i1 = t[(k + 1) % 3];
+      const uint64_t key = ((uint64_t)std::min(i0, i1) << 32) | std::max(i0, i1);
+      auto it = edge_of.find(key);
+      if (it == edge_of.end()) {
+        it = edge_of.emplace(key, edges.size()).first;
+        Edge e;
+        e.line.v[0] = ct.v[k];
+        e.line.v[1] = ct.v[(k + 1) % 3];
+        edges.push_back(e);
+      }
+      Edge& e = edges[it->second];
+      if (e.count < 2) e.facing[e.count] = facing;
+      ++e.count;
+    }
   }
+  for (const Edge& e : edges) {
+    const bool silhouette = e.count == 1 || (e.count == 2 && e.facing[0] * e.facing[1] < 0);
+    if (wire == Wire::Edges || silhouette) sc.lines.push_back(e.line);
+  }
+  if (wire != Wire::None) info.what += wire == Wire::Edges ? " + wireframe edges" : " + silhouette edges";
   info.prim_count = (uint32_t)m.tri.size();
   sc.objects.push_back(info);
 }
@@ -487,6 +533,39 @@ void parse_clip(const Node& o, Scene& sc) {
     sc.tris.push_back(ct);
   }
   info.prim_count = (uint32_t)sc.tris.size() - info.first_prim;
+  sc.objects.push_back(info);
+}
+
+// {"type": "lines", "lines": [[v0, v1], …]}: explicit clip-space segments, vertices as in "clip".
+void parse_lines(const Node& o, Scene& sc) {
+  o.expect_object({"type", "name", "lines"});
+  SceneObjectInfo info;
+  info.kind = "lines";
+  info.what = "explicit clip-space segments";
+  info.texgen = "given";
+  info.first_prim = (uint32_t)sc.lines.size();  // + the triangle count, once all are known
+  const Node ll = o.at("lines");
+  const int nv = sc.state.num_varyings;
+  for (size_t i = 0; i < ll.array_size(); ++i) {
+    const Node t = ll.at(i);
+    if (!t.j.is_array() || t.j.size() != 2) t.fail("expected 2 vertices, got " + t.type_of());
+    ClipLine cl;
+    for (size_t k = 0; k < 2; ++k) {
+      const Node v = t.at(k);
+      v.expect_object({"pos", "var"});
+      const Node pn = v.at("pos");
+      if (!pn.j.is_array() || pn.j.size() != 4) pn.fail("expected 4 numbers (x_c, y_c, z_c, w_c), got " + pn.type_of());
+      for (size_t c = 0; c < 4; ++c) cl.v[k].pos[c] = parse_f32_at(pn.at(c));
+      if (nv > 0 || v.has("var")) {
+        const Node vn = v.at("var");
+        if (!vn.j.is_array() || (int)vn.j.size() != nv)
+          vn.fail("expected " + std::to_string(nv) + " varyings (varyings.count), got " + vn.type_of());
+        for (int c = 0; c < nv; ++c) cl.v[k].var[c] = parse_f32_at(vn.at(c));
+      }
+    }
+    sc.lines.push_back(cl);
+  }
+  info.prim_count = (uint32_t)ll.j.size();
   sc.objects.push_back(info);
 }
 
@@ -605,8 +684,8 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
   // Syntax errors with line:column, nesting bounded, numbers beyond a double named by path.
   const json doc = parse_json_input(text, where);
   const Node root{doc, where, ""};
-  root.expect_object({"version", "name", "viewport", "config", "state", "background", "camera", "texture", "varyings",
-                      "objects"});
+  root.expect_object({"version", "name", "viewport", "config", "state", "line_state", "background", "camera",
+                      "texture", "varyings", "objects"});
   const Node ver = root.at("version");
   if (!ver.j.is_number_integer()) ver.fail("expected an integer, got " + ver.type_of());
   if (ver.j != kSceneFormatVersion)  // compared as JSON numbers: no narrowing
@@ -724,6 +803,24 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
     sc.texture = make_checker(64, 8, pack_rgba(240, 208, 64), pack_rgba(32, 64, 160), wrap);
   }
 
+  // Line draw state: the draw state with the depth fields overridden, and the lines' colour.
+  sc.line_state = sc.state;
+  if (root.has("line_state")) {
+    const Node s = root.at("line_state");
+    s.expect_object({"depth_func", "depth_test", "depth_write", "color"});
+    if (s.has("depth_func"))
+      sc.line_state.depth_func = s.at("depth_func").choice<DepthFunc>(
+          {{"never", DepthFunc::Never}, {"less", DepthFunc::Less}, {"equal", DepthFunc::Equal},
+           {"lequal", DepthFunc::LessEqual}, {"greater", DepthFunc::Greater}, {"notequal", DepthFunc::NotEqual},
+           {"gequal", DepthFunc::GreaterEqual}, {"always", DepthFunc::Always}});
+    if (s.has("depth_test")) sc.line_state.depth_test = s.at("depth_test").boolean();
+    if (s.has("depth_write")) sc.line_state.depth_write = s.at("depth_write").boolean();
+    if (s.has("color")) {
+      const Node c = s.at("color");
+      if (!parse_hex_color(c.string(), &sc.line_color)) c.fail("expected a colour \"#rrggbb\", got " + c.type_of());
+    }
+  }
+
   // Camera (only meshes use it).
   Camera cam;
   if (root.has("camera"))
@@ -738,8 +835,11 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
     const std::string type = o.at("type").string();
     if (type == "mesh") parse_mesh(o, sc, pv, base_dir, opt);
     else if (type == "clip") parse_clip(o, sc);
-    else o.at("type").fail("'" + type + "' is not one of: mesh, clip");
+    else if (type == "lines") parse_lines(o, sc);
+    else o.at("type").fail("'" + type + "' is not one of: mesh, clip, lines");
   }
+  for (SceneObjectInfo& info : sc.objects)  // lines are numbered after every triangle
+    if (info.kind == "lines") info.first_prim += (uint32_t)sc.tris.size();
   return sc;
 }
 
@@ -752,6 +852,17 @@ Scene load_scene(const std::string& path, const SceneOptions& opt) {
 }
 
 Scene default_scene(const SceneOptions& opt) {
+  if (opt.wireframe) {
+    // The wireframe variant (docs/scene-format.md): the face's edges and the bunny's silhouette.
+    json j = json::parse(default_scene_json());
+    j["name"] = j["name"].get<std::string>() + ", wireframe (face edges, bunny silhouette)";
+    j["objects"][0]["wireframe"] = "edges";
+    j["objects"][1]["wireframe"] = "silhouette";
+    j["line_state"] = {{"depth_func", "always"}, {"depth_write", false}, {"color", "#ff3030"}};
+    Scene s = parse_scene(j.dump(), "<default scene --wireframe>", "", opt);
+    s.source = "<default scene --wireframe>";
+    return s;
+  }
   Scene s = parse_scene(default_scene_json(), "<default scene>", "", opt);
   s.source = "<default scene>";
   return s;

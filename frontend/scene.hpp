@@ -45,6 +45,12 @@ struct Scene {
   Config config;           // defaults, overridden by the scene's "config" object
   DrawState state;
   std::vector<ClipTriangle> tris;
+  // Line segments (objects of type "lines", mesh "wireframe" edges), drawn after all triangles
+  // with line_state (the draw state with the scene's "line_state" overrides), into the same
+  // depth buffer; shaded with line_color. docs/scene-format.md, docs/lines.md.
+  std::vector<ClipLine> lines;
+  DrawState line_state;
+  uint32_t line_color = 0xffffffffu;  // packed RGBA, like background
   Texture texture;
   uint32_t background = 0;           // packed RGBA of the cleared framebuffer
   int u_varying = 0, v_varying = 1;  // which varyings are the texture u, v (−1: none → flat colour)
@@ -56,6 +62,7 @@ struct Scene {
 struct SceneOptions {
   int width = 0, height = 0;  // > 0: override the viewport size (the camera aspect follows)
   bool no_optional = false;   // skip objects marked "optional" (e.g. the bunny)
+  bool wireframe = false;     // default scene only: the face's edges and the bunny's silhouette as lines
 };
 
 // Parses a scene from JSON text; `where` names it in errors (the file name), `base_dir` is
