@@ -146,6 +146,7 @@ struct OsmesaPeer::Impl {
   // Prepared draw.
   DrawState st;
   GLsizei vertex_count = 0;
+  GLenum mode = GL_TRIANGLES;
   int attachments = 0;  // 1 + payload attachments in use
 
   void make_current() {
@@ -308,6 +309,7 @@ void OsmesaPeer::prepare(const DrawState& st, const std::vector<ClipTriangle>& t
     }
   }
   m.vertex_count = (GLsizei)(tris.size() * 3);
+  m.mode = GL_TRIANGLES;
 
   glViewport(st.viewport_x, m.mirror_rect_y(st.viewport_y, st.viewport_h), st.viewport_w, st.viewport_h);
   const int sw = st.scissor_w < 0 ? st.viewport_w : st.scissor_w;
@@ -360,7 +362,7 @@ void OsmesaPeer::draw() {
   glClear(GL_DEPTH_BUFFER_BIT);
   glDepthMask(m.st.depth_write ? GL_TRUE : GL_FALSE);
   glEnable(GL_SCISSOR_TEST);
-  if (m.vertex_count) glDrawArrays(GL_TRIANGLES, 0, m.vertex_count);
+  if (m.vertex_count) glDrawArrays(m.mode, 0, m.vertex_count);
   glFinish();
   check_gl("draw");
 }
@@ -419,6 +421,23 @@ PeerImage OsmesaPeer::read() {
     }
   }
   return img;
+}
+
+PeerImage OsmesaPeer::render_lines(const DrawState& st, const std::vector<ClipLine>& lines) {
+  DrawState s2 = st;
+  s2.cull = CullMode::None;
+  prepare(s2, {});
+  Impl& m = *impl_;
+  static_assert(sizeof(ClipLine) == 2 * sizeof(ClipVertex), "vertices are tightly packed");
+  glBindBuffer(GL_ARRAY_BUFFER, m.vbo);  // the attribute pointers of prepare() stay valid
+  glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(lines.size() * sizeof(ClipLine)), lines.data(), GL_STATIC_DRAW);
+  m.vertex_count = (GLsizei)(lines.size() * 2);
+  m.mode = GL_LINES;
+  glDisable(GL_LINE_SMOOTH);
+  glLineWidth(1.0f);
+  check_gl("prepare lines");
+  draw();
+  return read();
 }
 
 PeerImage OsmesaPeer::render(const DrawState& st, const std::vector<ClipTriangle>& tris) {

@@ -87,6 +87,11 @@ class OsmesaPeer {
   // depth_func, depth_write, interp (Affine → noperspective). Deterministic.
   PeerImage render(const DrawState& st, const std::vector<ClipTriangle>& tris);
 
+  // Draws `lines` (GL_LINES, width 1, not smoothed: GL's diamond-exit rule, docs/lines.md;
+  // gl_PrimitiveID = index) with `st`, as render() does triangles (cull and front face do not
+  // apply). docs/references.md#llvmpipe-lines: how llvmpipe implements the rule.
+  PeerImage render_lines(const DrawState& st, const std::vector<ClipLine>& lines);
+
   // The same in three steps, for timing: prepare() uploads the triangles and sets the state
   // (not timed); draw() clears, draws and waits for completion (glFinish); read() reads back.
   void prepare(const DrawState& st, const std::vector<ClipTriangle>& tris);
