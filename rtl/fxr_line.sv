@@ -148,9 +148,22 @@ module fxr_line #(
     state_d = state_q;
     unique case (state_q)
       StIdle:  if (in_valid_i) state_d = StSetup;
-      StSetup: state_d = (extra && extra_before) ? StPre : cnt > 0 ? StWalk : extra ? StPost : StIdle;
-      StPre:   if (advance) state_d = cnt_q > 0 ? StWalk : StIdle;
-      StWalk:  if (advance && cnt_q == 1) state_d = (extra_q && !extra_before_q) ? StPost : StIdle;
+      // (if / else rather than conditional expressions: Icarus 11 rejects an enum assigned from one)
+      StSetup:
+        if (extra && extra_before) state_d = StPre;
+        else if (cnt > 0) state_d = StWalk;
+        else if (extra) state_d = StPost;
+        else state_d = StIdle;
+      StPre:
+        if (advance) begin
+          if (cnt_q > 0) state_d = StWalk;
+          else state_d = StIdle;
+        end
+      StWalk:
+        if (advance && cnt_q == 1) begin
+          if (extra_q && !extra_before_q) state_d = StPost;
+          else state_d = StIdle;
+        end
       StPost:  if (advance) state_d = StIdle;
       default: state_d = StIdle;
     endcase
