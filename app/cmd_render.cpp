@@ -120,14 +120,7 @@ int run_into(const Opts& o, const fs::path& tmp) {
     throw fxr::ConfigError("--wireframe selects the default scene's wireframe variant: give it with --default "
                            "(a scene file gives its own \"lines\" objects or mesh \"wireframe\")");
   fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.scene, so);
-  if (!o.config.empty()) {
-    // --config F: its fields override the scene's configuration (unit by unit, field by field).
-    const json cj = fxr::read_json_file(o.config, "configuration file");  // bounded, numbers checked
-    fxr::config_fields_from_json(cj, o.config);  // types and ranges of the file on its own (fields named)
-    json merged = fxr::config_to_json(sc.config);
-    merged.merge_patch(cj);
-    sc.config = fxr::config_from_json(merged, o.config);
-  }
+  if (!o.config.empty()) fxr::apply_config_file(sc, o.config);
   if (o.affine) sc.state.interp = sc.line_state.interp = fxr::InterpMode::Affine;
   check_image_sizes(sc, o.no_affine_image, o.use_default ? "<default scene>" : o.scene);
   for (const auto& n : sc.notes) std::cerr << "fxraster render: note: " << n << "\n";

@@ -1,10 +1,14 @@
-// `fxraster vectors`: golden vectors for a unit (hex + JSON manifest, docs/vectors.md), and
-// `fxraster vectors check FILE` to validate a file against its manifest and the model.
+// `fxraster vectors`: golden vectors for a unit (hex + JSON manifest, docs/vectors.md),
+// `fxraster vectors scene SCENE|--default` to dump a draw at every stage boundary (transaction
+// vectors), and `fxraster vectors check FILE|DUMP` to validate a file against its manifest and the
+// model, or a scene dump by re-stepping every stage.
 #include <filesystem>
 #include <iostream>
 
 #include "command.hpp"
+#include "frontend/scene.hpp"
 #include "model/config/config.hpp"
+#include "model/vectors/scene_dump.hpp"
 #include "model/vectors/vectors.hpp"
 
 namespace {
@@ -18,9 +22,49 @@ struct Opts {
   bool exhaustive = false;
   bool no_recompute = false;
   bool list = false;
+  bool use_default = false, no_bunny = false;
+  int width = 0, height = 0;
 };
 
+namespace fs = std::filesystem;
+
+// A scene dump: a folder holding scene.json, or scene.json itself.
+bool is_scene_dump(const std::string& path) {
+  std::error_code ec;
+  return fs::is_directory(path, ec) || fs::path(path).filename() == "scene.json";
+}
+
+int run_check_dump(const std::string& path) {
+  const std::string dir = fs::is_directory(path) ? path : fs::path(path).parent_path().string();
+  const fxr::RestepReport r = fxr::restep_scene_vectors(dir.empty() ? "." : dir);
+  for (const auto& l : r.first) std::cout << "MISMATCH " << l << "\n";
+  for (const auto& s : r.stages)
+    std::cout << dir << ": " << s.stage << ": " << s.in_rows << " in, " << s.out_rows << " out, re-stepped: "
+              << s.mismatches << " inputs differ\n";
+  std::cout << dir << ": format, manifests and transactions OK; " << r.mismatches() << " mismatches\n";
+  return r.mismatches() ? 1 : 0;
+}
+
+int run_scene(const Opts& o) {
+  const bool has_scene = o.args.size() == 2;
+  if (has_scene == o.use_default) throw fxr::ConfigError("vectors scene: give exactly one of SCENE or --default");
+  fxr::SceneOptions so;
+  so.width = o.width;
+  so.height = o.height;
+  so.no_optional = o.no_bunny;
+  fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.args[1], so);
+  if (!o.config.empty()) fxr::apply_config_file(sc, o.config);
+  const fxr::SceneDump d = fxr::dump_scene_vectors(sc.config, sc.state, sc.tris, o.out, sc.name);
+  uint64_t total = 0;
+  for (const auto& f : d.files) total += f.rows;
+  std::cout << "wrote " << o.out << ": " << d.files.size() << " files, " << total << " transactions ("
+            << sc.tris.size() << " primitives, " << d.stats.fragments_depth_pass
+            << " fragments) and " << o.out << "/scene.json\n";
+  return 0;
+}
+
 int run_check(const Opts& o, const std::string& path) {
+  if (is_scene_dump(path)) return run_check_dump(path);
   const fxr::Config cfg = o.config.empty() ? fxr::Config{} : fxr::load_config(o.config);
   const fxr::VecFile f = fxr::read_vectors(path, o.config.empty() ? nullptr : &cfg);
   std::cout << path << ": unit " << f.manifest.unit << ", " << f.rows() << " vectors of "
@@ -40,7 +84,8 @@ fxr::app::Runner setup(CLI::App& sub) {
   std::string units;
   for (const auto& u : fxr::vector_units()) units += (units.empty() ? "" : ", ") + u.name;
   auto* unit = sub.add_option("unit", o->args,
-                               "UNIT (" + units + ") to generate, or `check FILE` to validate a vector file")
+                               "UNIT (" + units + ") to generate, `scene SCENE|--default` to dump a draw at every stage "
+                               "boundary, or `check FILE|DUMP` to validate a vector file or a scene dump")
                    ->expected(1, 2);
   auto* list = sub.add_flag("--list", o->list, "print the units that have vectors, one per line, and exit");
   unit->excludes(list);
@@ -51,15 +96,23 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_option("--out", o->out, "output folder: writes OUT/UNIT.hex and OUT/UNIT.json");
   sub.add_flag("--exhaustive", o->exhaustive, "sweep the whole input domain instead of random cases");
   sub.add_flag("--no-recompute", o->no_recompute, "check: validate the format only, do not rerun the model");
+  sub.add_flag("--default", o->use_default, "scene: the embedded default scene");
+  sub.add_flag("--no-bunny", o->no_bunny, "scene: skip the scene's optional objects");
+  sub.add_option("--width", o->width, "scene: viewport width (overrides the scene's)")->check(CLI::Range(1, 16384));
+  sub.add_option("--height", o->height, "scene: viewport height (overrides the scene's)")->check(CLI::Range(1, 16384));
   sub.footer(
       "Directed corner cases come first, then --count random cases or the --exhaustive sweep.\n"
-      "Every line is one hex word ($readmemh); the manifest names the fields (docs/vectors.md).");
+      "Every line is one hex word ($readmemh); the manifest names the fields (docs/vectors.md).\n"
+      "`vectors scene` writes OUT/<stage>.in.hex and OUT/<stage>.out.hex for every stage of the\n"
+      "unit (transactions: txn / n_out / seq / last) and OUT/scene.json; `vectors check OUT`\n"
+      "re-reads the dump and re-steps every stage against it.");
   return [o]() {
     if (o->list) {
       for (const auto& u : fxr::vector_units()) std::cout << u.name << "\n";
       return 0;
     }
     if (o->args.empty()) throw fxr::ConfigError("vectors: missing the UNIT (one of `fxraster vectors --list`) or `check FILE`");
+    if (o->args[0] == "scene") return run_scene(*o);
     if (o->args[0] == "check") {
       if (o->args.size() != 2) throw fxr::ConfigError("vectors check: expected one FILE (the .hex)");
       return run_check(*o, o->args[1]);

@@ -869,3 +869,15 @@ Scene default_scene(const SceneOptions& opt) {
 }
 
 }  // namespace fxr
+
+namespace fxr {
+
+void apply_config_file(Scene& sc, const std::string& config_path) {
+  const nlohmann::json cj = read_json_file(config_path, "configuration file");  // bounded, numbers checked
+  config_fields_from_json(cj, config_path);  // types and ranges of the file on its own (fields named)
+  nlohmann::json merged = config_to_json(sc.config);
+  merged.merge_patch(cj);
+  sc.config = config_from_json(merged, config_path);
+}
+
+}  // namespace fxr

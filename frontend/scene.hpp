@@ -65,6 +65,10 @@ struct SceneOptions {
   bool wireframe = false;     // default scene only: the face's edges and the bunny's silhouette as lines
 };
 
+// `--config F` of the commands that read a scene: the fields of configuration file F override
+// the scene's configuration (unit by unit, field by field). Errors name F and the field.
+void apply_config_file(Scene& sc, const std::string& config_path);
+
 // Parses a scene from JSON text; `where` names it in errors (the file name), `base_dir` is
 // where relative OBJ / PNG paths are resolved. Throws ConfigError.
 Scene parse_scene(const std::string& text, const std::string& where, const std::string& base_dir,

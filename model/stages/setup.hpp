@@ -276,6 +276,12 @@ struct TriangleEquations {
       v(p + "_exp", interp.num_exp[m], fx_exp_field_bits(s.cfg), true);
     }
   }
+  // The members that are configuration constants, not wires (model/vectors/record_vectors.hpp).
+  void restore(const RecordShape& s) {
+    edges.g = grid_bits(s.cfg.raster);
+    depth.max_code = depth_max_code(s.cfg.raster);
+    interp.n = s.num_varyings;
+  }
 };
 
 // Contract (model/stages/attr.cpp): the depth and varying planes of `eq` from the attribute

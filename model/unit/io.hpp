@@ -58,6 +58,17 @@ enum class InterpMode : uint8_t { Perspective, Affine };  // Affine: the wrong i
 
 // Draw state: everything besides the primitives that the unit needs. Window coordinates have
 // y up (row 0 at the bottom), pixel centres at (x + ½, y + ½).
+// Bits of a field holding the values 0 … n − 1 (enum choices) or 0 … n (counts: n + 1 values).
+constexpr int bits_for_values(int n) {
+  int b = 1;
+  while ((1 << b) < n) ++b;
+  return b;
+}
+inline constexpr int kCullModeBits = bits_for_values(3);      // CullMode: 3 choices
+inline constexpr int kDepthFuncBits = bits_for_values(8);     // DepthFunc: 8 choices
+inline constexpr int kInterpModeBits = bits_for_values(2);    // InterpMode: 2 choices
+inline constexpr int kNumVaryingsBits = bits_for_values(kMaxVaryings + 1);  // 0 … kMaxVaryings
+
 struct DrawState {
   int viewport_x = 0, viewport_y = 0, viewport_w = 256, viewport_h = 256;
   int scissor_x = 0, scissor_y = 0, scissor_w = -1, scissor_h = -1;  // −1: same as the viewport
@@ -68,6 +79,29 @@ struct DrawState {
   bool depth_test = true;
   bool depth_write = true;
   InterpMode interp = InterpMode::Perspective;
+
+  // The draw state as the unit's register block (a record, model/unit/stage.hpp). Origins are
+  // signed window_int_bits pixel indices; sizes window_int_bits + 1 bits signed (a size may
+  // span the whole signed range, and the scissor's −1 means "the viewport").
+  template <class V>
+  void visit(V& v, const RecordShape& s) {
+    const int b = s.cfg.raster.window_int_bits;
+    v("viewport_x", viewport_x, b, true);
+    v("viewport_y", viewport_y, b, true);
+    v("viewport_w", viewport_w, b + 1, true);
+    v("viewport_h", viewport_h, b + 1, true);
+    v("scissor_x", scissor_x, b, true);
+    v("scissor_y", scissor_y, b, true);
+    v("scissor_w", scissor_w, b + 1, true);
+    v("scissor_h", scissor_h, b + 1, true);
+    v("num_varyings", num_varyings, kNumVaryingsBits, false);
+    v("front_ccw", front_ccw, 1, false);
+    v("cull", cull, kCullModeBits, false);
+    v("depth_func", depth_func, kDepthFuncBits, false);
+    v("depth_test", depth_test, 1, false);
+    v("depth_write", depth_write, 1, false);
+    v("interp", interp, kInterpModeBits, false);
+  }
 };
 
 }  // namespace fxr

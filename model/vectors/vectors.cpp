@@ -51,15 +51,15 @@ int VecLayout::index(const std::string& name) const {
   return -1;
 }
 
-uint64_t vec_mask(int width) { return width >= 64 ? ~0ull : ((1ull << width) - 1); }
+vec_word vec_mask(int width) { return width >= kVecMaxFieldBits ? ~(vec_word)0 : (((vec_word)1 << width) - 1); }
 
-int64_t vec_unpack_signed(uint64_t bits, int width) {
+i128 vec_unpack_signed(vec_word bits, int width) {
   bits &= vec_mask(width);
-  if (width < 64 && ((bits >> (width - 1)) & 1)) bits |= ~vec_mask(width);
-  return (int64_t)bits;
+  if (width < kVecMaxFieldBits && ((bits >> (width - 1)) & 1)) bits |= ~vec_mask(width);
+  return (i128)bits;
 }
 
-std::string vec_field_hex(const VecField& f, uint64_t bits) {
+std::string vec_field_hex(const VecField& f, vec_word bits) {
   static const char* kHex = "0123456789abcdef";
   std::string s((size_t)f.digits, '0');
   for (int d = f.digits - 1; d >= 0; --d) {
@@ -247,7 +247,7 @@ void VecWriter::write(const VecRow& row) {
   ++count_;
 }
 
-void VecWriter::finish(VecManifest m) {
+void VecWriter::finish(VecManifest m, const nlohmann::json& overrides) {
   const bool bad = std::ferror(impl_->f) != 0;
   if (std::fclose(impl_->f) != 0 || bad) {
     impl_->f = nullptr;
@@ -261,7 +261,9 @@ void VecWriter::finish(VecManifest m) {
   const std::string mp = vec_manifest_path(path_);
   {
     std::ofstream o(partial(mp), std::ios::binary);
-    o << manifest_to_json(m).dump(2) << "\n";
+    nlohmann::json j = manifest_to_json(m);
+    for (auto it = overrides.begin(); it != overrides.end(); ++it) j[it.key()] = it.value();
+    o << j.dump(2) << "\n";
     o.close();
     if (!o) {
       std::remove(partial(path_).c_str());
@@ -346,6 +348,60 @@ int hex_value(char c) {
 }
 
 }  // namespace
+
+void read_vec_hex(const std::string& hex_path, const VecLayout& lay, uint64_t count, std::vector<vec_word>& data) {
+  std::ifstream in(hex_path, std::ios::binary);
+  if (!in) throw ConfigError(hex_path + ": cannot open");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t nf = lay.size();
+  // Reserve from the file's size, not from the manifest's count (which may be anything).
+  data.reserve(text.size() / ((size_t)lay.digits() + 1) * nf);
+  size_t pos = 0;
+  uint64_t line = 0;
+  while (pos < text.size()) {
+    ++line;
+    const size_t eol = text.find('\n', pos);
+    const std::string where = hex_path + ":" + std::to_string(line);
+    if (eol == std::string::npos)
+      throw ConfigError(where + ": the last line has no trailing newline (Verilator's $readmemh "
+                        "would drop it; the file may be truncated)");
+    size_t len = eol - pos;
+    if (len > 0 && text[eol - 1] == '\r')
+      throw ConfigError(where + ": CR line end (the format uses LF only)");
+    if (line > count)
+      throw ConfigError(where + ": more lines than the manifest's count " + std::to_string(count));
+    if ((int)len != lay.digits()) {
+      throw ConfigError(where + ": " + std::to_string(len) + " hex digits, expected " +
+                        std::to_string(lay.digits()) + " (" + std::to_string(nf) +
+                        " fields; wrong field count or width)");
+    }
+    size_t col = pos;
+    for (size_t fi = 0; fi < nf; ++fi) {
+      const auto& f = lay[fi];
+      vec_word v = 0;
+      for (int d = 0; d < f.digits; ++d, ++col) {
+        const int h = hex_value(text[col]);
+        if (h < 0) {
+          const unsigned char c = (unsigned char)text[col];
+          char shown[8];
+          std::snprintf(shown, sizeof shown, (c >= 0x20 && c < 0x7f) ? "%c" : "\\x%02x", c);
+          throw ConfigError(where + ": field '" + f.name + "' (column " + std::to_string(col - pos + 1) +
+                            "): bad hex digit '" + std::string(shown) + "'" +
+                            (c >= 'A' && c <= 'F' ? " (uppercase: the format is lowercase hex)" : ""));
+        }
+        v = (v << kVecBitsPerDigit) | (vec_word)h;
+      }
+      if (v & ~vec_mask(f.width))
+        throw ConfigError(where + ": field '" + f.name + "': value " + vec_field_hex(f, v) +
+                          " does not fit its " + std::to_string(f.width) + " bits");
+      data.push_back(v);
+    }
+    pos = eol + 1;
+  }
+  if (line < count)
+    throw ConfigError(hex_path + ": " + std::to_string(line) + " lines, the manifest says " +
+                      std::to_string(count) + " (truncated file?)");
+}
 
 VecFile read_vectors(const std::string& hex_path, const Config* expect) {
   VecFile vf;
@@ -437,58 +493,7 @@ VecFile read_vectors(const std::string& hex_path, const Config* expect) {
     throw ConfigError(mp + ": field 'cases' is missing or not an array");
   }
 
-  // Hex lines.
-  std::ifstream in(hex_path, std::ios::binary);
-  if (!in) throw ConfigError(hex_path + ": cannot open");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const size_t nf = lay.size();
-  // Reserve from the file's size, not from the manifest's count (which may be anything).
-  vf.data.reserve(text.size() / ((size_t)lay.digits() + 1) * nf);
-  size_t pos = 0;
-  uint64_t line = 0;
-  while (pos < text.size()) {
-    ++line;
-    const size_t eol = text.find('\n', pos);
-    const std::string where = hex_path + ":" + std::to_string(line);
-    if (eol == std::string::npos)
-      throw ConfigError(where + ": the last line has no trailing newline (Verilator's $readmemh "
-                        "would drop it; the file may be truncated)");
-    size_t len = eol - pos;
-    if (len > 0 && text[eol - 1] == '\r')
-      throw ConfigError(where + ": CR line end (the format uses LF only)");
-    if (line > m.count)
-      throw ConfigError(where + ": more lines than the manifest's count " + std::to_string(m.count));
-    if ((int)len != lay.digits()) {
-      throw ConfigError(where + ": " + std::to_string(len) + " hex digits, expected " +
-                        std::to_string(lay.digits()) + " (" + std::to_string(nf) +
-                        " fields; wrong field count or width)");
-    }
-    size_t col = pos;
-    for (size_t fi = 0; fi < nf; ++fi) {
-      const auto& f = lay[fi];
-      uint64_t v = 0;
-      for (int d = 0; d < f.digits; ++d, ++col) {
-        const int h = hex_value(text[col]);
-        if (h < 0) {
-          const unsigned char c = (unsigned char)text[col];
-          char shown[8];
-          std::snprintf(shown, sizeof shown, (c >= 0x20 && c < 0x7f) ? "%c" : "\\x%02x", c);
-          throw ConfigError(where + ": field '" + f.name + "' (column " + std::to_string(col - pos + 1) +
-                            "): bad hex digit '" + std::string(shown) + "'" +
-                            (c >= 'A' && c <= 'F' ? " (uppercase: the format is lowercase hex)" : ""));
-        }
-        v = (v << kVecBitsPerDigit) | (uint64_t)h;
-      }
-      if (v & ~vec_mask(f.width))
-        throw ConfigError(where + ": field '" + f.name + "': value " + vec_field_hex(f, v) +
-                          " does not fit its " + std::to_string(f.width) + " bits");
-      vf.data.push_back(v);
-    }
-    pos = eol + 1;
-  }
-  if (line < m.count)
-    throw ConfigError(hex_path + ": " + std::to_string(line) + " lines, the manifest says " +
-                      std::to_string(m.count) + " (truncated file?)");
+  read_vec_hex(hex_path, lay, m.count, vf.data);
   return vf;
 }
 
@@ -598,7 +603,7 @@ class DivVectors : public VectorModel {
     // Round-to-nearest-even ties and near-ties: d = 1.0, n with the bit below the quotient lsb set.
     if (nb_ > qb_) {
       const uint64_t half = bit(nb_ - qb_ - 1);
-      for (uint64_t base : {nmin, nmin + 2 * half, nmax & ~vec_mask(nb_ - qb_)}) {
+      for (uint64_t base : {nmin, nmin + 2 * half, (uint64_t)(nmax & ~vec_mask(nb_ - qb_))}) {
         add(base + half, dmin);
         add(base + half - 1, dmin);
         if (half > 1 || base + half + 1 <= nmax) add(std::min(base + half + 1, nmax), dmin);

@@ -23,6 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/arith/fixed.hpp"
 #include "model/config/config.hpp"
 #include "model/unit/stage.hpp"
 
@@ -34,8 +35,10 @@ inline constexpr int kVectorFormatVersion = 1;
 // Manifest "generator_version": bumped whenever a generator (directed list, random draw order,
 // exhaustive order) of any unit changes, so old files are recognisably different.
 inline constexpr int kVectorGeneratorVersion = 1;
-// A field is held in a uint64_t: widths 1..64.
-inline constexpr int kVecMaxFieldBits = 64;
+// A field is held in a vec_word (unsigned 128 bits): widths 1..128. Wider record fields (none
+// today) would be split into named limbs by the record layout (docs/vectors.md).
+using vec_word = u128;
+inline constexpr int kVecMaxFieldBits = 128;
 // Hex digits per field: one digit carries 4 bits.
 inline constexpr int kVecBitsPerDigit = 4;
 
@@ -75,20 +78,20 @@ class VecLayout {
 
 // One vector: the raw bits of every field, in layout order (signed fields as two's complement
 // masked to their width).
-using VecRow = std::vector<uint64_t>;
+using VecRow = std::vector<vec_word>;
 
 // Field bits <-> integers. Contract: pack keeps the low `width` bits of v (caller ensures v
-// fits); unpack sign-extends bit width−1. 1 ≤ width ≤ 64.
-uint64_t vec_mask(int width);
-inline uint64_t vec_pack(int64_t v, int width) { return (uint64_t)v & vec_mask(width); }
-int64_t vec_unpack_signed(uint64_t bits, int width);
+// fits); unpack sign-extends bit width−1. 1 ≤ width ≤ kVecMaxFieldBits.
+vec_word vec_mask(int width);
+inline vec_word vec_pack(i128 v, int width) { return (vec_word)v & vec_mask(width); }
+i128 vec_unpack_signed(vec_word bits, int width);
 
 // Hex of a row: every field (the file line), or only the inputs / outputs concatenated the same
 // way (used by mismatch reports: "in=... got=... exp=...").
 std::string vec_hex(const VecLayout& l, const VecRow& r);
 std::string vec_hex(const VecLayout& l, const VecRow& r, VecDir dir);
 // Hex of one field, ceil(width/4) digits.
-std::string vec_field_hex(const VecField& f, uint64_t bits);
+std::string vec_field_hex(const VecField& f, vec_word bits);
 
 // A unit's vectors at one configuration.
 class VectorModel {
@@ -167,8 +170,9 @@ class VecWriter {
   VecWriter(const std::string& hex_path, const VecLayout& layout);  // throws on open failure
   ~VecWriter();
   void write(const VecRow& row);
-  // Writes the manifest (count and hex_file are filled in) and closes both files.
-  void finish(VecManifest manifest);
+  // Writes the manifest (count and hex_file are filled in) and closes both files. `overrides`:
+  // top-level manifest keys replaced or added (the transaction vectors' own format and keys).
+  void finish(VecManifest manifest, const nlohmann::json& overrides = nlohmann::json::object());
   uint64_t count() const { return count_; }
 
  private:
@@ -186,11 +190,11 @@ VecManifest write_unit_vectors(const std::string& unit, const Config& cfg, uint6
 // A vector file in memory, rows stored flat (row i, field f at data[i·nfields + f]).
 struct VecFile {
   VecManifest manifest;
-  std::vector<uint64_t> data;
+  std::vector<vec_word> data;
   std::string hex_path;
   size_t rows() const { return manifest.layout.size() ? data.size() / manifest.layout.size() : 0; }
   VecRow row(size_t i) const;
-  uint64_t at(size_t i, size_t f) const { return data[i * manifest.layout.size() + f]; }
+  vec_word at(size_t i, size_t f) const { return data[i * manifest.layout.size() + f]; }
 };
 
 // Reads and validates a hex file and its manifest. Errors (ConfigError) name the file, the line
@@ -201,6 +205,11 @@ struct VecFile {
 // With `expect`, the manifest's configuration must equal expect's sections for the unit
 // (manifest/config mismatch: the error names the first differing parameter).
 VecFile read_vectors(const std::string& hex_path, const Config* expect = nullptr);
+
+// Reads the hex lines of a vector file laid out as `lay` into `data` (row-major, appended): the
+// line checks of read_vectors (digit count, lowercase hex digits, values within their widths,
+// LF line ends, final newline, exactly `count` lines), errors naming file:line and field.
+void read_vec_hex(const std::string& hex_path, const VecLayout& lay, uint64_t count, std::vector<vec_word>& data);
 
 // Recomputes every output with the model at the manifest's configuration; returns the number of
 // rows whose outputs differ and fills `first` with up to `max_report` lines describing them.

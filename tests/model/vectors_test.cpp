@@ -137,11 +137,24 @@ TEST(VectorsLayout, SignedFieldsRoundTripThroughTheirWidth) {
   }
   EXPECT_EQ(vec_unpack_signed(0x40, 7), -64);
   EXPECT_EQ(vec_unpack_signed(0x3f, 7), 63);
+  // Fields wider than 64 bits (plane sums of the transaction vectors), up to kVecMaxFieldBits.
+  for (int w : {65, 100, 125, kVecMaxFieldBits}) {
+    const i128 hi = (i128)(((u128)1 << (w - 1)) - 1), lo = -hi - 1;
+    for (i128 v : {(i128)0, (i128)-1, lo, hi, (i128)INT64_MIN - 1}) {
+      const bool same = vec_unpack_signed(vec_pack(v, w), w) == v;
+      EXPECT_TRUE(same) << w;
+    }
+  }
+  // Hex of a wide field: ceil(w / 4) digits, two's complement: −1 in 125 bits is 1 followed by 31 f.
+  const VecField f{"wide", VecDir::In, 125, true, ""};
+  const VecLayout l({f});
+  EXPECT_EQ(vec_field_hex(l[0], vec_pack(-1, 125)), "1" + std::string(31, 'f'));
 }
 
 TEST(VectorsLayout, OutputsMustFollowInputs) {
   EXPECT_THROW(VecLayout({{"o", VecDir::Out, 3, false, ""}, {"i", VecDir::In, 3, false, ""}}), ConfigError);
-  EXPECT_THROW(VecLayout({{"i", VecDir::In, 65, false, ""}}), ConfigError);
+  EXPECT_THROW(VecLayout({{"i", VecDir::In, kVecMaxFieldBits + 1, false, ""}}), ConfigError);
+  EXPECT_THROW(VecLayout({{"i", VecDir::In, 0, false, ""}}), ConfigError);
 }
 
 TEST(VectorsGenerate, SameSeedSameFileOtherSeedOtherFile) {

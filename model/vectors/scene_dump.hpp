@@ -1,0 +1,83 @@
+// model/vectors/scene_dump.hpp — transaction vectors: a whole draw dumped at every stage boundary
+// of the raster unit through the chain's taps (model/unit/chain.hpp), read back, and re-stepped
+// stage by stage (docs/vectors.md, "Transaction vectors").
+//
+// For every stage S of the chain (convert, clip, recip, viewport, setup, traverse, interp, depth,
+// divide) two vector files in the one-word-per-line hex format of model/vectors/vectors.hpp:
+//   S.in.hex   one line per record S received:  txn, n_out[, ctx], then the In record's fields
+//   S.out.hex  one line per record S emitted:   txn, seq, last, then the Out record's fields
+// txn numbers S's inputs from 0 in stream order; an output carries the txn of the input it came
+// from, its index seq among that input's outputs and last = 1 on the final one; n_out is the
+// number of outputs of the input (0 when the stage emitted nothing: a rejected, culled or
+// depth-failed record). So 1 → 0..n stages (clipper, traversal, interpolators) need no
+// special case: a testbench drives S.in rows and expects, per txn, exactly n_out S.out rows.
+// ctx (interp only) is the line (from 0) of setup.out holding the triangle's equations, the
+// per-triangle context the interpolators latch. The field lists come from the records' visit()
+// (model/vectors/record_vectors.hpp): nothing is hand-written, and a value that does not fit its
+// declared width stops the dump with an error naming the stage and field.
+// Beside them, scene.json: the configuration, the draw state (the DrawState record), the files
+// with their counts, and the unit's statistics.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/config/config.hpp"
+#include "model/unit/io.hpp"
+#include "model/unit/raster_unit.hpp"
+
+namespace fxr {
+
+// scene.json "format" / "format_version": bumped when the transaction layout rules change.
+inline constexpr const char* kSceneVectorFormatName = "fxraster-scene-vectors";
+inline constexpr int kSceneVectorFormatVersion = 1;
+// Transaction header fields: ids and counts are unsigned 32 bits (a dump with more records per
+// stage is refused with an error).
+inline constexpr int kTxnIdBits = 32;
+inline constexpr int kTxnCountBits = 32;
+
+// The stages in chain order (the names are the stages' kName).
+const std::vector<std::string>& scene_dump_stages();
+
+struct SceneDumpFile {
+  std::string stage, side;  // side: "in" or "out"
+  std::string hex;          // file name inside the dump folder
+  uint64_t rows = 0;
+  int word_bits = 0;
+};
+
+struct SceneDump {
+  std::vector<SceneDumpFile> files;
+  RasterStats stats;
+};
+
+// Contract: runs the raster unit on `tris` with `st` (fragments streamed, as run_raster_unit)
+// and writes every stage boundary into folder `dir` (created; replaced when it holds only a
+// previous dump's files, otherwise an error). Written into a temporary folder beside `dir` and
+// renamed at the end: a failed dump leaves no partial folder. Deterministic: the same inputs give
+// byte-identical files. Throws ConfigError.
+SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
+                             const std::string& dir, const std::string& scene_name);
+
+// Re-reading and re-stepping a dump: every file is read and validated (manifest format, layout
+// equal to the records' layout at the dump's configuration, hex lines, transaction ids and
+// counts consistent between S.in and S.out), then every stage is stepped again on its S.in
+// records alone — in order, the depth stage on a freshly cleared buffer, the interpolators with
+// the context from setup.out — and its outputs compared with S.out field by field.
+struct RestepStage {
+  std::string stage;
+  uint64_t in_rows = 0, out_rows = 0, mismatches = 0;
+};
+struct RestepReport {
+  std::vector<RestepStage> stages;
+  std::vector<std::string> first;  // up to max_report mismatch descriptions (file:line, field)
+  uint64_t mismatches() const {
+    uint64_t n = 0;
+    for (const auto& s : stages) n += s.mismatches;
+    return n;
+  }
+};
+RestepReport restep_scene_vectors(const std::string& dir, size_t max_report = 20);
+
+}  // namespace fxr
