@@ -8,7 +8,8 @@
 // GL's rule is diamond exit (docs/references.md#gl-diamond-exit): the model's diamond_exit must
 // agree on nearly every pixel; the midpoint rule differs by design at the ends (which pixel of
 // an endpoint's neighbourhood is drawn) and on rows through diamond corners. Figures:
-// docs/lines.md, "Against llvmpipe".
+// docs/lines.md, "Against llvmpipe". FXR_LINE_PEER_DIFFS=1 prints every differing segment of the
+// four classes off the tie points (in 1/256 px) with its model-only and llvmpipe-only pixels.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -78,6 +79,13 @@ Result compare(OsmesaPeer& peer, const LineConfig& lc, uint64_t seed, int per_cl
       for (int y = 0; y < kSide; ++y)
         for (int x = 0; x < kSide; ++x)
           if (img.covered(x, y)) p.emplace(x, y);
+      if (std::getenv("FXR_LINE_PEER_DIFFS") && m != p && cls < 4) {
+        std::printf("class %d segment (%lld,%lld)-(%lld,%lld) [1/%d px]:", cls, (long long)s.x0, (long long)s.y0,
+                    (long long)s.x1, (long long)s.y1, 1 << S);
+        for (const auto& q : m) if (!p.count(q)) std::printf(" model-only (%d,%d)", q.first, q.second);
+        for (const auto& q : p) if (!m.count(q)) std::printf(" llvmpipe-only (%d,%d)", q.first, q.second);
+        std::printf("\n");
+      }
       for (Agreement* a : {&r.total, &r.per_class[cls]}) {
         ++a->segments;
         a->identical += m == p;
