@@ -211,24 +211,7 @@ bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangl
 
 void attr_interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const AttrSetup& a,
                        InterpSetup& out) {
-  const int bits = cfg.raster.interp_block_bits;
-  out.n = st.num_varyings;
-  if (st.interp == InterpMode::Affine) {
-    const int64_t one[3] = {1, 1, 1};  // R_k = 1: D = 2A'
-    out.den = make_attr_plane(a, one);
-    out.den_exp = 0;
-  } else {
-    const FxFloat rw[3] = {tri.v[0].rw, tri.v[1].rw, tri.v[2].rw};
-    const Block3 r = align_block(rw, bits);
-    out.den = make_attr_plane(a, r.q);
-    out.den_exp = r.exp;
-  }
-  for (int m = 0; m < out.n; ++m) {
-    const FxFloat vw[3] = {tri.v[0].vw[m], tri.v[1].vw[m], tri.v[2].vw[m]};
-    const Block3 b = align_block(vw, bits);
-    out.num[m] = make_attr_plane(a, b.q);
-    out.num_exp[m] = b.exp;
-  }
+  build_interp_planes(cfg, st, tri, out, [&](const int64_t q[3]) { return make_attr_plane(a, q); });
 }
 
 }  // namespace fxr

@@ -127,24 +127,7 @@ Block3 align_block(const FxFloat v[3], int bits) {
 
 void interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const TriSetup& t,
                   InterpSetup& out) {
-  const int bits = cfg.raster.interp_block_bits;
-  out.n = st.num_varyings;
-  if (st.interp == InterpMode::Affine) {
-    const int64_t one[3] = {1, 1, 1};  // R_k = 1: D = 2A
-    out.den = make_plane(t, one);
-    out.den_exp = 0;
-  } else {
-    const FxFloat rw[3] = {tri.v[0].rw, tri.v[1].rw, tri.v[2].rw};
-    const Block3 r = align_block(rw, bits);
-    out.den = make_plane(t, r.q);
-    out.den_exp = r.exp;
-  }
-  for (int m = 0; m < out.n; ++m) {
-    const FxFloat vw[3] = {tri.v[0].vw[m], tri.v[1].vw[m], tri.v[2].vw[m]};
-    const Block3 b = align_block(vw, bits);
-    out.num[m] = make_plane(t, b.q);
-    out.num_exp[m] = b.exp;
-  }
+  build_interp_planes(cfg, st, tri, out, [&](const int64_t q[3]) { return make_plane(t, q); });
 }
 
 DepthSetup depth_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup& t) {

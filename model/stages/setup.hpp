@@ -188,6 +188,32 @@ struct InterpSetup {
   int n = 0;                 // number of varyings
 };
 
+// The planes of stage 7 from per-vertex block values: D from the block-aligned 1/w (affine:
+// R_k = 1, D = 2A), N_m from the block-aligned v_m/w; `plane(q)` builds Σ E_k·q[k] with the
+// edge functions of the caller's triangle (coverage or attribute positions).
+template <class MakePlane>
+void build_interp_planes(const Config& cfg, const DrawState& st, const SetupTriangle& tri, InterpSetup& out,
+                         MakePlane&& plane) {
+  const int bits = cfg.raster.interp_block_bits;
+  out.n = st.num_varyings;
+  if (st.interp == InterpMode::Affine) {
+    const int64_t one[3] = {1, 1, 1};
+    out.den = plane(one);
+    out.den_exp = 0;
+  } else {
+    const FxFloat rw[3] = {tri.v[0].rw, tri.v[1].rw, tri.v[2].rw};
+    const Block3 r = align_block(rw, bits);
+    out.den = plane(r.q);
+    out.den_exp = r.exp;
+  }
+  for (int m = 0; m < out.n; ++m) {
+    const FxFloat vw[3] = {tri.v[0].vw[m], tri.v[1].vw[m], tri.v[2].vw[m]};
+    const Block3 b = align_block(vw, bits);
+    out.num[m] = plane(b.q);
+    out.num_exp[m] = b.exp;
+  }
+}
+
 // Contract: builds the planes of stage 7 for `tri` (perspective: D from rw; affine: D = 2A,
 // i.e. R_k = 1). Uses raster.interp_block_bits. Exact apart from align_block's rounding.
 void interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const TriSetup& t,
