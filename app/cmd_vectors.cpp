@@ -54,6 +54,9 @@ int run_scene(const Opts& o) {
   so.no_optional = o.no_bunny;
   fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.args[1], so);
   if (!o.config.empty()) fxr::apply_config_file(sc, o.config);
+  if (!sc.lines.empty())  // a documented discard, never a silent one (docs/lines.md, "The line path")
+    std::cerr << "fxraster vectors scene: note: the scene's " << sc.lines.size()
+              << " line segments are not dumped (the line stages are not in the transaction vectors yet)\n";
   const fxr::SceneDump d = fxr::dump_scene_vectors(sc.config, sc.state, sc.tris, o.out, sc.name);
   uint64_t total = 0;
   for (const auto& f : d.files) total += f.rows;

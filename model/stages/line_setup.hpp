@@ -67,7 +67,8 @@ struct LineEquations {
   int den_exp = 0;
   int64_t vq[kMaxVaryings][2] = {};  // v/w on the block exponent num_exp[m]
   int num_exp[kMaxVaryings] = {};
-  int n = 0;                  // varyings computed (0 when nothing downstream divides)
+  int n = 0;                  // varyings set up (0 when nothing downstream divides); not in visit():
+                              // the line interpolators use their own count, as InterpStage does
 
   template <class V>
   void visit(V& v, const RecordShape& s) {
@@ -219,7 +220,7 @@ class LineInterpStage {
     floor_divmod(w0 * (i128)e.zq[0] + w1 * (i128)e.zq[1], e.zden, q, r);
     const i128 c = rne_round_up<i128>(q, r, e.zden) ? q + 1 : q;
     s_.depth = (uint32_t)(c < 0 ? 0 : c > max_code_ ? max_code_ : c);
-    const int nv = nv_ < e.n ? nv_ : e.n;
+    const int nv = nv_;  // as InterpStage: the stage's own count (e.n is not part of the record)
     if (nv > 0) {
       s_.den = w0 * (i128)e.rq[0] + w1 * (i128)e.rq[1];
       s_.den_exp = e.den_exp;
