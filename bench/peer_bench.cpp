@@ -6,6 +6,9 @@
 //   - model:    fxr::run_raster_unit on the default configuration (keeps every Fragment);
 //   - stream:   the same stages (run_raster_unit_to: the stage chain of model/unit/chain.hpp)
 //               streaming fragments into an image.
+// FXR_BENCH_CONFIG=FILE runs the model benchmarks at that configuration (e.g.
+// tests/golden/config_attr_equals_subpixel.json, the default before the attribute positions of
+// docs/pipeline.md) — to compare a change of the code at a fixed configuration.
 // Scenes at 1024 × 1024: the bunny (69,666 triangles, setup-bound) and a grazing textured
 // plane (2 triangles, fill-bound), with 0 and 2 varyings, depth test on (less).
 // items/s = fragments/s, fragments = covered samples before the depth test, each renderer
@@ -36,6 +39,15 @@ namespace {
 constexpr int kSize = 1024;
 enum SceneId { kBunny = 0, kPlane = 1 };
 const char* const kSceneNames[] = {"bunny", "plane"};
+
+// The model's configuration: the defaults, or FXR_BENCH_CONFIG's file.
+const Config& bench_config() {
+  static const Config cfg = [] {
+    const char* path = std::getenv("FXR_BENCH_CONFIG");
+    return path && *path ? load_config(path) : Config{};
+  }();
+  return cfg;
+}
 
 const PeerScene& scene(int id, int nv) {
   static std::map<int, std::unique_ptr<PeerScene>> cache;
@@ -95,7 +107,7 @@ void BM_Llvmpipe(benchmark::State& state) {
 
 void BM_Model(benchmark::State& state) {
   const PeerScene& s = scene((int)state.range(0), (int)state.range(1));
-  const Config cfg;
+  const Config& cfg = bench_config();
   uint64_t frags = 0;
   for (auto _ : state) {
     const FrameOutput out = run_raster_unit(cfg, s.st, s.tris);
@@ -119,7 +131,7 @@ struct ImageSink : FragmentSink {
 
 void BM_ModelStream(benchmark::State& state) {
   const PeerScene& s = scene((int)state.range(0), (int)state.range(1));
-  const Config cfg;
+  const Config& cfg = bench_config();
   ImageSink sink;
   sink.width = s.st.viewport_x + s.st.viewport_w;
   sink.nv = s.st.num_varyings;
@@ -188,6 +200,7 @@ class RatioReporter : public benchmark::ConsoleReporter {
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  if (const char* c = std::getenv("FXR_BENCH_CONFIG")) std::printf("model configuration: %s\n", c);
   if (!the_peer()) std::fprintf(stderr, "WARNING: no OSMesa/llvmpipe context: llvmpipe rows are skipped\n");
   else std::printf("llvmpipe: %s, LP_NUM_THREADS=%s\n", the_peer()->info().renderer.c_str(), std::getenv("LP_NUM_THREADS"));
   RatioReporter rep;
