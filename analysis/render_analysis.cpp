@@ -10,6 +10,8 @@
 #include <tuple>
 
 #include "frontend/texture.hpp"
+#include "model/stages/texaddr.hpp"
+#include "reference/texture_ref.hpp"
 #include "model/unit/geometry.hpp"
 
 namespace fxr {
@@ -127,7 +129,11 @@ RenderErrors compare_to_reference(const Scene& sc, const FrameOutput& fo) {
       if (size) {
         e.var_texel[k].add(err * size);
         if (heat) *heat = std::max(*heat, err * size);
-        if (texel_index(f.var[k], size, sc.texture.wrap) != texel_index_ref(ref, size, sc.texture.wrap))
+        // The nearest texel along this axis: the texture address unit against the same rule on
+        // the double reference value.
+        TexAddrConfig nearest = sc.config.tex_addr;
+        nearest.filter = TexFilter::Nearest;
+        if (texaddr_axis(nearest, f.var[k], (uint32_t)size).i0 != ref_tex_axis(TexFilter::Nearest, nearest.wrap, ref, (uint32_t)size).i0)
           ++e.texel_diff[k];
       }
     }
@@ -202,6 +208,7 @@ SpotChecks exact_spot_checks(const Scene& sc, const FrameOutput& fo, int n) {
       continue;
     }
     ++s.ideal_checked;
+    if (sc.u_varying >= 0 && sc.v_varying >= 0) s.ideal_uv.push_back({i, id.v[sc.u_varying], id.v[sc.v_varying]});
     s.ideal_depth_lsb.add(depth_err_lsb(mpq_class(mpz_class(f.depth), mpz_class(dmax)), id.z, db));
     for (int k = 0; k < nv; ++k) {
       const double e = ulp_err(to_mpq(f.var[k]), id.v[k], p);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <gmpxx.h>
 #include <nlohmann/json.hpp>
 
 #include "analysis/error_stats.hpp"
@@ -51,6 +52,13 @@ struct SpotChecks {
   uint64_t ideal_checked = 0, ideal_undefined = 0;
   ErrStat ideal_depth_lsb;
   std::vector<ErrStat> ideal_var_ulp;
+  // The exact ideal texture coordinates of the checked fragments (when the scene has u and v):
+  // index into fo.fragments, u, v. Read by the texel report (analysis/texel_errors.hpp).
+  struct IdealUV {
+    size_t fragment;
+    mpq_class u, v;
+  };
+  std::vector<IdealUV> ideal_uv;
 };
 SpotChecks exact_spot_checks(const Scene& sc, const FrameOutput& fo, int n);
 

@@ -4,17 +4,20 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/stages/texfilter.hpp"
+#include "reference/texture_ref.hpp"
+
 namespace fxr {
 
 namespace {
 
-// Paints fragments in draw order (the last one that passed the depth test wins). `texel(f, k,
-// size)` gives the texel index of varying k of fragment f along an axis of `size` texels.
-template <class Frag, class Texel>
-Image paint(const Scene& sc, const std::vector<Frag>& frags, Texel texel) {
+// Paints fragments in draw order (the last one that passed the depth test wins); `colour(f)` is
+// the shaded colour of fragment f.
+template <class Frag, class Colour>
+Image paint(const Scene& sc, const std::vector<Frag>& frags, Colour colour) {
   const DrawState& st = sc.state;
   Image img(st.viewport_w, st.viewport_h, sc.background);
-  const auto& tex = sc.texture;
+  const bool textured = sc.u_varying >= 0 && sc.v_varying >= 0;
   for (const auto& f : frags) {
     const int x = f.x - st.viewport_x, y = f.y - st.viewport_y;
     if (x < 0 || y < 0 || x >= img.width || y >= img.height) continue;
@@ -22,26 +25,35 @@ Image paint(const Scene& sc, const std::vector<Frag>& frags, Texel texel) {
       img.at(x, y) = sc.line_color;
       continue;
     }
-    img.at(x, y) = sc.u_varying < 0 || sc.v_varying < 0
-                       ? pack_rgba(192, 192, 192)  // no texture coordinates: flat grey
-                       : texture_fetch(tex, texel(f, sc.u_varying, tex.image.width),
-                                            texel(f, sc.v_varying, tex.image.height));
+    img.at(x, y) = textured ? colour(f) : pack_rgba(192, 192, 192);  // no texture coordinates: flat grey
   }
   return img;
 }
 
 }  // namespace
 
-// The texture address unit on the model's fragments: exact floor(u·W) on the FxFloat codes.
+uint32_t shade_fragment(const Scene& sc, const FxFloat& u, const FxFloat& v) {
+  const Image& im = sc.texture.image;
+  TexAddrIn in;
+  in.u = u;
+  in.v = v;
+  in.width = (uint32_t)im.width;
+  in.height = (uint32_t)im.height;
+  const TexelView view{im.rgba.data(), (uint32_t)im.width, (uint32_t)im.height};
+  return texfilter(sc.config.tex_addr, texaddr(sc.config.tex_addr, in), view, sc.texture.border);
+}
+
 Image shade_model(const Scene& sc, const FrameOutput& fo) {
-  return paint(sc, fo.fragments, [&](const Fragment& f, int k, int size) {
-    return texel_index(f.var[k], size, sc.texture.wrap);
-  });
+  return paint(sc, fo.fragments,
+               [&](const Fragment& f) { return shade_fragment(sc, f.var[sc.u_varying], f.var[sc.v_varying]); });
 }
 
 Image shade_reference(const Scene& sc, const RefFrame& rf) {
-  return paint(sc, rf.fragments, [&](const RefFragment& f, int k, int size) {
-    return texel_index_ref(f.var[k], size, sc.texture.wrap);
+  const TexAddrConfig& c = sc.config.tex_addr;
+  const Image& im = sc.texture.image;
+  return paint(sc, rf.fragments, [&](const RefFragment& f) {
+    return pack_blend(blend_ref(im, sc.texture.border, ref_tex_axis(c.filter, c.wrap, f.var[sc.u_varying], im.width),
+                                ref_tex_axis(c.filter, c.wrap, f.var[sc.v_varying], im.height)));
   });
 }
 

@@ -13,10 +13,17 @@
 
 namespace fxr {
 
-// The texture address unit on the model's fragments: exact floor(u·W) on the FxFloat codes;
-// the last fragment that passed the depth test wins. No u, v: flat grey.
+// The shaded images. The model's: every fragment's FxFloat u, v through the texture address unit
+// (model/stages/texaddr.hpp) and the texel filter (model/stages/texfilter.hpp) with the
+// configuration's tex_addr (filter, wrap), in integer arithmetic; the reference's: the same rules
+// on the double reference's u, v (reference/texture_ref.hpp). The last fragment that passed the
+// depth test wins. No u, v: flat grey. The texture must fit tex_addr.size_bits (checked by
+// render_with_report).
 Image shade_model(const Scene& sc, const FrameOutput& fo);
 Image shade_reference(const Scene& sc, const RefFrame& rf);
+
+// The colour of one model fragment (shade_model's, for the texel report).
+uint32_t shade_fragment(const Scene& sc, const FxFloat& u, const FxFloat& v);
 
 // Depth codes → grey, normalised to the range of written codes (nearest = brightest, 255;
 // farthest written = 48); never-written pixels (the cleared code) are black. Reports the range.

@@ -1,13 +1,17 @@
 // The render report (analysis/render_report.hpp).
 #include "analysis/render_report.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
 #include "analysis/line_analysis.hpp"
 #include "analysis/render_images.hpp"
+#include "analysis/texel_errors.hpp"
+#include "model/stages/texfilter.hpp"
 
 namespace fxr {
 
@@ -24,6 +28,16 @@ void write_text(const std::string& path, const std::string& text) {
 }  // namespace
 
 RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
+  {
+    // The texture address unit takes sizes in [1, 2^tex_addr.size_bits] (model/stages/texaddr.hpp).
+    const int64_t most = int64_t{1} << sc.config.tex_addr.size_bits;
+    const Image& t = sc.texture.image;
+    if (t.width < 1 || t.height < 1 || t.width > most || t.height > most)
+      throw ConfigError(sc.source + ": texture " + sc.texture.description + ": " + std::to_string(t.width) + "x" +
+                        std::to_string(t.height) + " texels is outside the texture address unit's sizes 1 … " +
+                        std::to_string(most) + " (field 'tex_addr.size_bits' = " +
+                        std::to_string(sc.config.tex_addr.size_bits) + ")");
+  }
   std::filesystem::create_directories(o.out);
   using clk = std::chrono::steady_clock;
   auto t0 = clk::now();
@@ -68,11 +82,19 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
   if (sc.u_varying >= 0) write_png(o.out + "/error_heatmap.png", heat_image(err.heat, sc.state.viewport_w, sc.state.viewport_h));
   const SpotChecks spot = exact_spot_checks(sc, fo, o.spot_checks);
   const ErrStat snap = snap_errors(sc);
+  const TexelErrors texel = texel_errors(sc, fo, spot);
 
   // Final images: pixels that differ in colour.
   const Image rimg = shade_reference(sc, rf);
   uint64_t pix_diff = 0;
-  for (size_t i = 0; i < img.rgba.size(); ++i) pix_diff += img.rgba[i] != rimg.rgba[i];
+  uint32_t pix_max_levels = 0;  // largest channel difference of a pixel
+  for (size_t i = 0; i < img.rgba.size(); ++i) {
+    pix_diff += img.rgba[i] != rimg.rgba[i];
+    for (int k = 0; k < kTexChannels; ++k) {
+      const int a = (img.rgba[i] >> (kTexChannelBits * k)) & 0xff, b = (rimg.rgba[i] >> (kTexChannelBits * k)) & 0xff;
+      pix_max_levels = std::max(pix_max_levels, (uint32_t)std::abs(a - b));
+    }
+  }
 
   // Accounting: every input primitive is drawn, culled (with the reason) or rejected.
   const RasterStats& s = fo.stats;
@@ -122,6 +144,9 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
                     {"varyings", lv}};
   }
   rep["image_pixels_differing_from_reference"] = pix_diff;
+  rep["image_max_channel_difference_levels"] = pix_max_levels;
+  rep["texture_filter"] = sc.config.tex_addr.filter == TexFilter::Bilinear ? "bilinear" : "nearest";
+  rep["texel_errors"] = texel.to_json();
   rep["other_interp_mode"] = other_mode;
   rep["depth_image_range"] = dlo <= dhi ? json{dlo, dhi} : json(nullptr);
   write_text(o.out + "/report.json", rep.dump(2) + "\n");
@@ -225,7 +250,40 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
         "tiny while the snapping error is not); the texel column is the one that shows on screen.\n\n";
   if (err.ref_invalid) md << err.ref_invalid << " fragments where the reference is undefined (edge-on) were skipped.\n\n";
   md << "Pixels of the shaded image that differ from the reference image: " << pix_diff << " of "
-     << img.rgba.size() << ".\n\n";
+     << img.rgba.size() << " (largest channel difference " << pix_max_levels << " levels of 255).\n\n";
+  if (texel.textured) {
+    const int fb = texel.weight_frac_bits;
+    md << "## Texel error: the texture address unit, both filters\n\n"
+          "The shaded image uses the **" << rep["texture_filter"].get<std::string>() << "** filter (`tex_addr.filter`, "
+          "`render --filter`), wrap `" << texel.wrap << "`, bilinear weights with " << fb << " fraction bits "
+          "(docs/texaddr.md). Both filters are measured here whatever the image uses. Each fragment's u, v codes go "
+          "through the texture address unit and the texel filter (integer), and are compared with: the exact address "
+          "of the **same** codes (GMP: how well the unit rounds; every fragment), the exact address of the **ideal** "
+          "u, v (the exact spot-check sample above: what a user sees), and the same rules on the **double reference**'s "
+          "u, v (every fragment). Same texels: every index and border flag of both axes equal; weight error: "
+          "|unit weight − exact fraction · 2^" << fb << "| in LSBs, on fragments with the same texels (both axes); "
+          "colour error: largest channel difference between the unit's colour and the unrounded blend at the "
+          "reference's address, in 8-bit levels.\n\n"
+          "| filter | against | fragments | same texels | weight error max (LSB) | mean | colour error max (levels) | mean | p99 |\n"
+          "|---|---|---|---|---|---|---|---|---|\n";
+    for (const TexelFilterErrors& fe : texel.filters) {
+      const bool bil = fe.filter == "bilinear";
+      auto lrow = [&](const char* against, const TexelLevel& l) {
+        md << "| " << fe.filter << " | " << against << " | " << l.checked << " | " << l.same_texels << " ("
+           << fmt_num(l.checked ? 100.0 * (double)l.same_texels / (double)l.checked : 0.0, 4) << " %) | "
+           << (bil ? fmt_num(l.weight_lsb.max) : std::string("—")) << " | "
+           << (bil ? fmt_num(l.weight_lsb.mean()) : std::string("—")) << " | " << fmt_num(l.colour.max) << " | "
+           << fmt_num(l.colour.mean()) << " | " << fmt_num(l.colour.pct(0.99)) << " |\n";
+      };
+      lrow("exact, own coordinates", fe.own);
+      lrow("exact, ideal", fe.ideal);
+      lrow("double reference", fe.ref);
+    }
+    md << "\n";
+    if (texel.coords_exp_outside)
+      md << "**" << texel.coords_exp_outside << " u, v codes have an exponent outside the unit's "
+         << "tex_addr.exp_bits field** (the model's result is exact; the RTL would read a different value).\n\n";
+  }
   md << "## Exact spot checks (GMP): against the ideal and against the model's own triangle\n\n"
      << spot.checked << " fragments (evenly spaced in draw order) re-evaluated exactly at two levels: against the "
         "**ideal** (the exact solve of the unsnapped float32 input at the pixel centre, `fxr::IdealJudge`: what a "

@@ -23,6 +23,7 @@ struct Opts {
   std::string scene, out, config;
   bool use_default = false, wireframe = false, affine = false, no_bunny = false, no_affine_image = false, quiet = false;
   int width = 0, height = 0, spot_checks = 2000;
+  std::string filter;  // "" (the configuration's tex_addr.filter), nearest, bilinear
 };
 
 namespace fs = std::filesystem;
@@ -122,6 +123,9 @@ int run_into(const Opts& o, const fs::path& tmp) {
   fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.scene, so);
   if (!o.config.empty()) fxr::apply_config_file(sc, o.config);
   if (o.affine) sc.state.interp = sc.line_state.interp = fxr::InterpMode::Affine;
+  // --filter: the texture filter of the shaded images (tex_addr.filter, docs/texaddr.md).
+  if (!o.filter.empty())
+    sc.config.tex_addr.filter = o.filter == "bilinear" ? fxr::TexFilter::Bilinear : fxr::TexFilter::Nearest;
   check_image_sizes(sc, o.no_affine_image, o.use_default ? "<default scene>" : o.scene);
   for (const auto& n : sc.notes) std::cerr << "fxraster render: note: " << n << "\n";
 
@@ -162,6 +166,10 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_option("--config", o->config, "configuration JSON whose fields override the scene's configuration");
   sub.add_flag("--affine", o->affine, "interpolate varyings affinely in screen space (the wrong image of docs/references.md#seed-000) "
                                       "for the main image; the extra image is then the perspective one");
+  sub.add_option("--filter", o->filter,
+                 "texture filter of the shaded images: nearest or bilinear (default: the configuration's "
+                 "tex_addr.filter; docs/texaddr.md); the report measures both")
+      ->check(CLI::IsMember({"nearest", "bilinear"}));
   sub.add_flag("--no-bunny", o->no_bunny, "leave out optional meshes (the default scene's bunny)");
   sub.add_flag("--no-affine-image", o->no_affine_image, "do not render the second image in the other interpolation mode");
   sub.add_option("--width", o->width, "override the viewport width (pixels)")->check(CLI::Range(1, 16384));

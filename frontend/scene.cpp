@@ -770,12 +770,22 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
   }
   if (sc.state.num_varyings < 2 && !root.has("varyings")) sc.u_varying = sc.v_varying = -1;
 
-  // Texture.
-  WrapMode wrap = WrapMode::Repeat;
+  // Texture. Its filter and wrap mode are texture state the texture address unit is fed: given
+  // here, they set the configuration's tex_addr.filter / tex_addr.wrap (docs/scene-format.md).
+  uint32_t border = sc.background;
   if (root.has("texture")) {
     const Node t = root.at("texture");
-    t.expect_object({"kind", "size", "squares", "colors", "path", "wrap"});
-    if (t.has("wrap")) wrap = t.at("wrap").choice<WrapMode>({{"repeat", WrapMode::Repeat}, {"clamp", WrapMode::Clamp}});
+    t.expect_object({"kind", "size", "squares", "colors", "path", "wrap", "filter", "border"});
+    if (t.has("wrap"))
+      sc.config.tex_addr.wrap = t.at("wrap").choice<TexWrap>(
+          {{"repeat", TexWrap::Repeat}, {"mirrored_repeat", TexWrap::MirroredRepeat},
+           {"clamp_to_edge", TexWrap::ClampToEdge}, {"clamp_to_border", TexWrap::ClampToBorder},
+           {"clamp", TexWrap::ClampToEdge}});  // "clamp": the seed's clamp, the name before issue 15
+    if (t.has("filter"))
+      sc.config.tex_addr.filter =
+          t.at("filter").choice<TexFilter>({{"nearest", TexFilter::Nearest}, {"bilinear", TexFilter::Bilinear}});
+    if (t.has("border") && !parse_hex_color(t.at("border").string(), &border))
+      t.at("border").fail("expected a colour \"#rrggbb\"");
     const std::string kind = t.at("kind").string();
     if (kind == "checker") {
       const int size = t.has("size") ? t.at("size").integer(1, 4096) : 64;
@@ -788,20 +798,27 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
         if (!parse_hex_color(c.at(size_t{0}).string(), &a)) c.at(size_t{0}).fail("expected \"#rrggbb\"");
         if (!parse_hex_color(c.at(size_t{1}).string(), &b)) c.at(size_t{1}).fail("expected \"#rrggbb\"");
       }
-      sc.texture = make_checker(size, squares, a, b, wrap);
+      sc.texture = make_checker(size, squares, a, b);
     } else if (kind == "png") {
       const Node p = t.at("path");
       try {
-        sc.texture = load_png_texture(resolve(base_dir, p.string()), wrap);
+        sc.texture = load_png_texture(resolve(base_dir, p.string()));
       } catch (const ConfigError& e) {
         p.fail(e.what());
       }
+      // The texture address unit takes sizes up to 2^tex_addr.size_bits.
+      const int64_t most = int64_t{1} << sc.config.tex_addr.size_bits;
+      if (sc.texture.image.width > most || sc.texture.image.height > most)
+        p.fail("the texture is " + std::to_string(sc.texture.image.width) + "x" +
+               std::to_string(sc.texture.image.height) + ", larger than the texture address unit's 2^tex_addr.size_bits = " +
+               std::to_string(most) + " texels per side");
     } else {
       t.at("kind").fail("'" + kind + "' is not one of: checker, png");
     }
   } else {
-    sc.texture = make_checker(64, 8, pack_rgba(240, 208, 64), pack_rgba(32, 64, 160), wrap);
+    sc.texture = make_checker(64, 8, pack_rgba(240, 208, 64), pack_rgba(32, 64, 160));
   }
+  sc.texture.border = border;
 
   // Line draw state: the draw state with the depth fields overridden, and the lines' colour.
   sc.line_state = sc.state;

@@ -1,7 +1,5 @@
-// Textures, texel addressing and PNG I/O (see frontend/texture.hpp).
+// Textures and PNG I/O (see frontend/texture.hpp).
 #include "frontend/texture.hpp"
-
-#include <cmath>
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
@@ -10,12 +8,11 @@
 
 namespace fxr {
 
-Texture make_checker(int size, int squares, uint32_t color_a, uint32_t color_b, WrapMode wrap) {
+Texture make_checker(int size, int squares, uint32_t color_a, uint32_t color_b) {
   if (size < 1 || squares < 1 || size % squares != 0)
     throw ConfigError("checker texture: size " + std::to_string(size) + " must be a positive multiple of squares " +
                       std::to_string(squares));
   Texture t;
-  t.wrap = wrap;
   t.image = Image(size, size, color_a);
   const int cell = size / squares;
   for (int y = 0; y < size; ++y)
@@ -25,7 +22,7 @@ Texture make_checker(int size, int squares, uint32_t color_a, uint32_t color_b, 
   return t;
 }
 
-Texture load_png_texture(const std::string& path, WrapMode wrap) {
+Texture load_png_texture(const std::string& path) {
   int w = 0, h = 0, n = 0;
   stbi_uc* data = stbi_load(path.c_str(), &w, &h, &n, 4);
   if (!data) {
@@ -33,7 +30,6 @@ Texture load_png_texture(const std::string& path, WrapMode wrap) {
     throw ConfigError(path + ": cannot load the PNG texture: " + (why ? why : "unknown error"));
   }
   Texture t;
-  t.wrap = wrap;
   t.image = Image(w, h, 0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -58,40 +54,6 @@ void write_png(const std::string& path, const Image& img) {
     }
   if (!stbi_write_png(path.c_str(), img.width, img.height, 4, bytes.data(), img.width * 4))
     throw std::runtime_error(path + ": cannot write the PNG image");
-}
-
-static int wrap_or_clamp(int64_t i, int size, WrapMode wrap) {
-  if (wrap == WrapMode::Repeat) {
-    const int64_t m = i % size;
-    return (int)(m < 0 ? m + size : m);
-  }
-  return (int)(i < 0 ? 0 : (i >= size ? size - 1 : i));
-}
-
-int texel_index(const FxFloat& u, int size, WrapMode wrap) {
-  if (u.sig == 0) return 0;
-  if (u.exp >= 0) {
-    // |u| ≥ 1 and u·size = (sig·2^exp)·size is an integer multiple of size.
-    if (wrap == WrapMode::Repeat) return 0;
-    return u.neg ? 0 : size - 1;
-  }
-  // sig < 2^40 and size ≤ 2^20: the product is exact in 64 bits.
-  const int64_t scaled = (int64_t)u.sig * size;
-  // floor(±scaled · 2^exp): Round::Trunc rounds toward −∞, the one rounding here (a floor).
-  const i128 fl = shift_round(u.neg ? -(i128)scaled : (i128)scaled, -u.exp, Round::Trunc);
-  return wrap_or_clamp((int64_t)fl, size, wrap);
-}
-
-int texel_index_ref(double u, int size, WrapMode wrap) {
-  if (std::isnan(u)) return 0;
-  const double f = std::floor(u * size);
-  if (wrap == WrapMode::Repeat) {
-    const double m = f - std::floor(f / size) * size;
-    return std::isfinite(m) ? wrap_or_clamp((int64_t)m, size, wrap) : 0;
-  }
-  if (f < 0) return 0;
-  if (f >= size) return size - 1;
-  return (int)f;
 }
 
 bool parse_hex_color(const std::string& s, uint32_t* out) {

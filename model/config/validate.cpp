@@ -105,10 +105,20 @@ const std::vector<ConfigRule> kRules = {
               "), from which it is derived (the divider produces the output varyings): leave it out of the "
               "configuration, or call derive_widths() after setting raster.varying_out_sig_bits";
      }},
+    {"tex_addr.sig_bits_derived", RuleScope::Config, "tex_addr.sig_bits",
+     "tex_addr.sig_bits = raster.varying_out_sig_bits (derived: the texture address unit reads the output varyings)",
+     [](const Config& c) -> std::string {
+       if (c.tex_addr.sig_bits == c.raster.varying_out_sig_bits) return "";
+       return str(c.tex_addr.sig_bits) + " differs from raster.varying_out_sig_bits (" +
+              str(c.raster.varying_out_sig_bits) +
+              "), from which it is derived (the texture address unit reads the output varyings u, v): leave it out "
+              "of the configuration, or call derive_widths() after setting raster.varying_out_sig_bits";
+     }},
 };
 
 const std::vector<DerivedParam> kDerived = {
     {"div", "quot_bits", "raster", "varying_out_sig_bits", "the divider produces the output varyings"},
+    {"tex_addr", "sig_bits", "raster", "varying_out_sig_bits", "the texture address unit reads the output varyings u, v"},
 };
 
 // Collects range violations of one unit: "field 'unit.name': v is outside [lo, hi]".
@@ -157,7 +167,10 @@ void throw_if_any(const std::string& where, const std::vector<std::string>& prob
 const std::vector<ConfigRule>& config_rules() { return kRules; }
 const std::vector<DerivedParam>& derived_params() { return kDerived; }
 
-void derive_widths(Config& cfg) { cfg.div.quot_bits = cfg.raster.varying_out_sig_bits; }
+void derive_widths(Config& cfg) {
+  cfg.div.quot_bits = cfg.raster.varying_out_sig_bits;
+  cfg.tex_addr.sig_bits = cfg.raster.varying_out_sig_bits;
+}
 
 void validate(const Config& cfg, const std::string& where) {
   std::vector<std::string> problems;

@@ -45,7 +45,7 @@ enum class TexFilter : uint8_t { Nearest, Bilinear };
 enum class TexWrap : uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder };
 
 struct TexAddrConfig {
-  int sig_bits = 24;         // significand of u, v incl. the leading one (= raster.varying_out_sig_bits)
+  int sig_bits = 24;         // significand of u, v incl. the leading one (derived: = raster.varying_out_sig_bits)
   int exp_bits = 10;         // signed exponent of the significand's lsb (value = sig · 2^exp)
   int size_bits = 12;        // texture width / height ≤ 2^size_bits (4096)
   int weight_frac_bits = 8;  // bilinear weight fraction bits F (8: an RGBA8 blend step)
@@ -58,7 +58,8 @@ struct TexAddrConfig {
     v.integer("exp_bits", exp_bits, 6, 16, "signed exponent bits of u, v (exponent of the significand's lsb)");
     v.integer("size_bits", size_bits, 1, 16, "texture width and height are at most 2^size_bits");
     v.integer("weight_frac_bits", weight_frac_bits, 1, 16, "fraction bits of the bilinear weights (correctly rounded)");
-    v.choice("filter", filter, {"nearest", "bilinear"}, "texture filter: one texel, or four texels and two weights");
+    v.choice("filter", filter, {"nearest", "bilinear"},
+             "texture filter: one texel, or four texels and two weights (render's shaded image; render --filter)");
     v.choice("wrap", wrap, {"repeat", "mirrored_repeat", "clamp_to_edge", "clamp_to_border"},
              "wrap mode outside [0, 1): modulo, mirrored modulo, edge texel, border (background) colour");
   }

@@ -784,7 +784,13 @@ class TexaddrVectors : public VectorModel {
     lay_ = VecLayout(f);
   }
   const VecLayout& layout() const override { return lay_; }
-  nlohmann::json config_json() const override { return unit_config_json("tex_addr", to_json_params(c_)); }
+  nlohmann::json config_json() const override {
+    nlohmann::json j = unit_config_json("tex_addr", to_json_params(c_));
+    // sig_bits is derived from raster.varying_out_sig_bits (model/config/validate.hpp): a
+    // non-default width is recorded at its source so that the manifest reads back.
+    if (c_.sig_bits != RasterConfig{}.varying_out_sig_bits) j["raster"] = {{"varying_out_sig_bits", c_.sig_bits}};
+    return j;
+  }
   void compute(VecRow& r) const override {
     TexAddrConfig c = c_;
     c.filter = (TexFilter)r[0];

@@ -13,8 +13,10 @@
 #include "analysis/error_stats.hpp"
 #include "analysis/render_analysis.hpp"
 #include "analysis/render_report.hpp"
+#include "analysis/texel_errors.hpp"
 #include "frontend/scene.hpp"
 #include "model/unit/raster_unit.hpp"
+#include "reference/reference.hpp"
 
 namespace {
 
@@ -96,6 +98,50 @@ TEST(RenderAnalysis, ReferenceComparisonCoversEveryFragmentAndMapsTheHeat) {
   for (double h : e.heat) painted += h >= 0;
   EXPECT_GT(painted, 0u);
   EXPECT_LE(painted, fo.fragments.size());
+}
+
+// The texel report (analysis/texel_errors.hpp) for every wrap mode and two weight widths: on the
+// model's own coordinates the unit is exact (same texels everywhere, weight error ≤ ½ LSB, colour
+// error ≤ ½ level of the final rounding + 255 · 2^−F of the weight rounding: Σ|ŵ − w| over the
+// four weights ≤ 2 · 2^−F and the weights' errors sum to zero); against the ideal the weight error
+// is at most ½ LSB + the coordinate's own error |u − u_ideal| · size · 2^F (measured here).
+TEST(TexelErrors, TheUnitIsExactOnItsOwnCoordinatesAndWithinTheCoordinateErrorOfTheIdeal) {
+  for (fxr::TexWrap wrap : {fxr::TexWrap::Repeat, fxr::TexWrap::MirroredRepeat, fxr::TexWrap::ClampToEdge,
+                            fxr::TexWrap::ClampToBorder})
+    for (int f : {4, 8}) {
+      fxr::Scene sc = small_default_scene();
+      sc.config.tex_addr.wrap = wrap;
+      sc.config.tex_addr.weight_frac_bits = f;
+      const fxr::FrameOutput fo = fxr::run_raster_unit(sc.config, sc.state, sc.tris);
+      const fxr::SpotChecks spot = fxr::exact_spot_checks(sc, fo, 300);
+      ASSERT_GT(spot.ideal_uv.size(), 250u);
+      const fxr::TexelErrors te = fxr::texel_errors(sc, fo, spot);
+      ASSERT_TRUE(te.textured);
+      ASSERT_EQ(te.filters.size(), 2u);
+      EXPECT_EQ(te.coords_exp_outside, 0u);
+      double du = 0;  // largest |u − u_ideal| · size over the sample, in texels
+      for (const auto& p : spot.ideal_uv) {
+        const fxr::Fragment& fr = fo.fragments[p.fragment];
+        du = std::max(du, std::abs(mpq_class(fxr::to_mpq(fr.var[sc.u_varying]) - p.u).get_d()) * sc.texture.image.width);
+        du = std::max(du, std::abs(mpq_class(fxr::to_mpq(fr.var[sc.v_varying]) - p.v).get_d()) * sc.texture.image.height);
+      }
+      for (const fxr::TexelFilterErrors& e : te.filters) {
+        const std::string what = e.filter + " wrap " + std::to_string((int)wrap) + " F " + std::to_string(f);
+        EXPECT_EQ(e.own.checked, fo.fragments.size()) << what;
+        EXPECT_EQ(e.own.same_texels, e.own.checked) << what;
+        EXPECT_EQ(e.ideal.checked, spot.ideal_uv.size()) << what;
+        if (e.filter == "nearest") {
+          EXPECT_EQ(e.own.colour.max, 0.0) << what;
+          EXPECT_EQ(e.own.weight_lsb.n, 0u) << what;
+        } else {
+          EXPECT_EQ(e.own.weight_lsb.n, 2 * e.own.checked) << what;
+          EXPECT_LE(e.own.weight_lsb.max, 0.5) << what;
+          EXPECT_GT(e.own.weight_lsb.max, 0.5 - std::ldexp(1.0, -10)) << what << ": the rounding is measured";
+          EXPECT_LE(e.own.colour.max, 0.5 + 255 * std::ldexp(1.0, -f)) << what;
+          EXPECT_LE(e.ideal.weight_lsb.max, 0.5 + du * std::ldexp(1.0, f) + 1e-9) << what;
+        }
+      }
+    }
 }
 
 TEST(RenderReport, WritesEveryFileAndTheDumpHasOneLinePerFragment) {

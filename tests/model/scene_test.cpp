@@ -272,6 +272,26 @@ TEST(Scene, ExampleScenesUnderScenesParse) {
   }
 }
 
+TEST(Scene, TextureFilterWrapAndBorderSetTheTextureAddressUnit) {
+  const Scene d = parse_scene(R"({"version": 1, "viewport": {"width": 8, "height": 8}, "background": "#102030",
+      "objects": []})", "scene.json", "");
+  EXPECT_EQ(d.config.tex_addr.filter, TexFilter::Nearest);  // the configuration's defaults
+  EXPECT_EQ(d.config.tex_addr.wrap, TexWrap::Repeat);
+  EXPECT_EQ(d.texture.border, pack_rgba(0x10, 0x20, 0x30));  // border: the background colour
+  const Scene s = parse_scene(R"({"version": 1, "viewport": {"width": 8, "height": 8},
+      "texture": {"kind": "checker", "filter": "bilinear", "wrap": "mirrored_repeat", "border": "#ff0000"},
+      "objects": []})", "scene.json", "");
+  EXPECT_EQ(s.config.tex_addr.filter, TexFilter::Bilinear);
+  EXPECT_EQ(s.config.tex_addr.wrap, TexWrap::MirroredRepeat);
+  EXPECT_EQ(s.texture.border, pack_rgba(255, 0, 0));
+  EXPECT_ERROR_HAS(R"({"version": 1, "viewport": {"width": 8, "height": 8},
+      "texture": {"kind": "checker", "filter": "trilinear"}, "objects": []})", "scene.json: /texture/filter: ");
+  EXPECT_ERROR_HAS(R"({"version": 1, "viewport": {"width": 8, "height": 8},
+      "texture": {"kind": "checker", "wrap": "tile"}, "objects": []})", "scene.json: /texture/wrap: ");
+  EXPECT_ERROR_HAS(R"({"version": 1, "viewport": {"width": 8, "height": 8},
+      "texture": {"kind": "checker", "border": "red"}, "objects": []})", "scene.json: /texture/border: ");
+}
+
 TEST(Scene, PngTextureLoadsRelativeToTheSceneAndMissingOneNamesTheField) {
   const std::string dir = ::testing::TempDir();
   Image img(4, 2, pack_rgba(9, 8, 7));
@@ -282,7 +302,7 @@ TEST(Scene, PngTextureLoadsRelativeToTheSceneAndMissingOneNamesTheField) {
   const Scene s = parse_scene(text, "scene.json", dir);
   EXPECT_EQ(s.texture.image.width, 4);
   EXPECT_EQ(s.texture.image.at(3, 1), pack_rgba(200, 100, 50));
-  EXPECT_EQ(s.texture.wrap, WrapMode::Clamp);
+  EXPECT_EQ(s.config.tex_addr.wrap, TexWrap::ClampToEdge);  // "clamp": the seed's clamp
   std::remove((dir + "/fxr_scene_tex.png").c_str());
   EXPECT_ERROR_HAS(R"({"version": 1, "viewport": {"width": 8, "height": 8},
       "texture": {"kind": "png", "path": "none.png"}, "objects": []})", "scene.json: /texture/path: ");

@@ -62,7 +62,8 @@ TEST(Validate, EveryRuleHasATestBelow) {
                                         "raster.depth_products_fit_int64", "raster.depth_sums_fit_int128",
                                         "raster.attr_plane_sums_fit_int128",
                                         "recip.nr_frac_bits_above_output", "recip.seed_index_within_input",
-                                        "div.iterative_needs_radix2",     "div.quot_bits_derived"};
+                                        "div.iterative_needs_radix2",     "div.quot_bits_derived",
+                                        "tex_addr.sig_bits_derived"};
   std::set<std::string> ids;
   for (const ConfigRule& r : config_rules()) {
     EXPECT_TRUE(ids.insert(r.id).second) << "duplicate rule id " << r.id;
@@ -169,6 +170,21 @@ TEST(Validate, QuotientWidthIsDerivedFromTheOutputVaryings) {
     EXPECT_EQ(c.div.quot_bits, bits);
     EXPECT_NO_THROW(validate(c, "x"));
   }
+}
+
+TEST(Validate, TexAddrSignificandIsDerivedFromTheOutputVaryings) {
+  Config bad, edge;
+  bad.tex_addr.sig_bits = bad.raster.varying_out_sig_bits - 1;
+  expect_rule("tex_addr.sig_bits_derived", bad, edge);
+  for (int bits : {8, 20, 32}) {
+    Config c;
+    c.raster.varying_out_sig_bits = bits;
+    EXPECT_THROW(validate(c, "x"), ConfigError) << bits;  // not yet derived
+    derive_widths(c);
+    EXPECT_EQ(c.tex_addr.sig_bits, bits);
+    EXPECT_NO_THROW(validate(c, "x"));
+  }
+  EXPECT_NO_THROW(validate(bad.tex_addr, "tex_addr"));  // the standalone unit keeps its own width
 }
 
 TEST(Validate, JsonDerivesTheQuotientWidth) {

@@ -36,6 +36,7 @@ const std::vector<BadConfig> kBad = {
     {"div.iterative_needs_radix2", R"({"version": 1, "div": {"algorithm": "recip_mul", "schedule": "iterative"}})",
      "div.schedule"},
     {"div.quot_bits_derived", R"({"version": 1, "div": {"quot_bits": 20}})", "div.quot_bits"},
+    {"tex_addr.sig_bits_derived", R"({"version": 1, "tex_addr": {"sig_bits": 20}})", "tex_addr.sig_bits"},
     {"issue example", R"({"version": 1, "recip": {"nr_frac_bits": 20}, "div": {"quot_bits": 20}})", "div.quot_bits"},
 };
 

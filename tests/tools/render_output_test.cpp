@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "tests/tools/cli.hpp"
 
 namespace fxr::test {
@@ -61,6 +63,37 @@ TEST(RenderOutput, OversizedImagesAreRefusedBeforeAnyWork) {
   EXPECT_NE(r.err.find("--no-affine-image"), std::string::npos) << r.err;
   EXPECT_LT(s, 20.0) << "refused only after rendering";  // the render itself took 113 s
   EXPECT_FALSE(fs::exists(d + "/out"));
+}
+
+TEST(RenderOutput, FilterOptionShadesBilinearAndTheReportMeasuresBothFilters) {
+  const std::string d = scratch();
+  ASSERT_EQ(run_cli(d, kSmall + "--filter bilinear --out '" + d + "/bil'").exit, 0);
+  ASSERT_EQ(run_cli(d, kSmall + "--out '" + d + "/near'").exit, 0);
+  const nlohmann::json b = nlohmann::json::parse(read_file(d + "/bil/report.json"));
+  const nlohmann::json n = nlohmann::json::parse(read_file(d + "/near/report.json"));
+  EXPECT_EQ(b["texture_filter"], "bilinear");
+  EXPECT_EQ(n["texture_filter"], "nearest");  // the configuration's default
+  for (const char* f : {"nearest", "bilinear"}) {
+    const auto& own = b["texel_errors"]["filters"][f]["vs_exact_own_coordinates"];
+    EXPECT_GT(own["checked"].get<uint64_t>(), 0u) << f;
+    EXPECT_EQ(own["same_texels"], own["checked"]) << f;  // the unit is exact on its own coordinates
+    EXPECT_LE(own["weight_error_lsb"]["max"].get<double>(), 0.5) << f;
+    EXPECT_GT(b["texel_errors"]["filters"][f]["vs_exact_ideal"]["checked"].get<uint64_t>(), 0u) << f;
+  }
+  EXPECT_NE(read_file(d + "/bil/image.png"), read_file(d + "/near/image.png")) << "bilinear shades differently";
+  EXPECT_NE(read_file(d + "/bil/report.md").find("## Texel error"), std::string::npos);
+  const CliResult bad = run_cli(d, kSmall + "--filter trilinear --out '" + d + "/bad'");
+  EXPECT_NE(bad.exit, 0);
+  EXPECT_NE(bad.err.find("--filter"), std::string::npos) << bad.err;
+}
+
+TEST(RenderOutput, TextureLargerThanTheAddressUnitIsRefusedNamingTheField) {
+  const std::string d = scratch();
+  write_file(d + "/cfg.json", R"({"version": 1, "tex_addr": {"size_bits": 5}})");  // 32 < the 64-texel checker
+  const CliResult r = run_cli(d, kSmall + "--config '" + d + "/cfg.json' --out '" + d + "/out'");
+  EXPECT_EQ(r.exit, 2) << r.err;
+  EXPECT_NE(r.err.find("tex_addr.size_bits"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(d + "/out"));
 }
 
 TEST(VectorsOutput, FinishedFilesOnlyAndThePreviousPairReplaced) {
