@@ -2,14 +2,18 @@
 // and extreme clip-space triangles. Invariants (docs/testing.md "Fuzzing"):
 //   every input primitive is accounted for (drawn + culled + rejected = in),
 //   every fragment lies inside the viewport ∩ scissor, its primitive index is an input's,
-//   every depth code is within the depth format, and fragment counts add up.
-// A configuration the rules reject (validate) is skipped: that path is the config harness's.
+//   every depth code is within the depth format, and fragment counts add up;
+//   and the same for 0..4 line segments drawn after the triangles (docs/lines.md): every segment
+//   is accounted for in RasterStats::lines, its fragments inside viewport ∩ scissor.
+// A configuration the rules reject (validate, check_attr_widths) is skipped: that path is the config
+// harness's.
 #include <cmath>
 #include <cstring>
 #include <vector>
 
 #include "model/config/config.hpp"
 #include "model/config/validate.hpp"
+#include "model/stages/attr.hpp"
 #include "model/stages/setup.hpp"
 #include "model/unit/raster_unit.hpp"
 #include "tests/fuzz/fuzz_common.hpp"
@@ -72,6 +76,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   derive_widths(cfg);
   try {
     validate(cfg, "fuzz");
+    check_attr_widths(cfg);  // frame_begin's other configuration rule (model/stages/attr.hpp)
   } catch (const ConfigError&) {
     return 0;
   }
@@ -92,8 +97,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (b.below(2)) v.pos[3] = std::fabs(v.pos[3]);  // mostly in front of the eye
       for (int k = 0; k < st.num_varyings; ++k) v.var[k] = extreme(b);
     }
+  std::vector<ClipLine> lines((size_t)b.in(0, 4));  // 0 once the input is used up: old inputs unchanged
+  for (auto& l : lines)
+    for (auto& v : l.v) {
+      for (float& p : v.pos) p = extreme(b);
+      if (b.below(2)) v.pos[3] = std::fabs(v.pos[3]);
+      for (int k = 0; k < st.num_varyings; ++k) v.var[k] = extreme(b);
+    }
   FrameOutput f;
-  fuzz::run_expecting_config_errors([&] { f = run_raster_unit(cfg, st, tris); });
+  fuzz::run_expecting_config_errors([&] { f = run_raster_unit(cfg, st, tris, st, lines); });
+  fuzz::check(f.stats.lines.in == lines.size(), "lines.in differs from the input count");
+  fuzz::check(f.stats.lines.accounted() == f.stats.lines.in, "a line segment is not accounted for");
   const RasterStats& s = f.stats;
   fuzz::check(s.prims_in == tris.size(), "prims_in differs from the input count");
   const uint64_t accounted = s.prims_drawn + s.prims_culled_outside + s.prims_culled_zero_area +
@@ -106,7 +120,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (const Fragment& fr : f.fragments) {
     fuzz::check(fr.x >= r.x0 && fr.x <= r.x1 && fr.y >= r.y0 && fr.y <= r.y1, "fragment outside viewport ∩ scissor");
     fuzz::check(fr.depth <= max_code, "depth code beyond the format");
-    fuzz::check(fr.prim < tris.size(), "fragment of no input primitive");
+    fuzz::check(fr.prim < tris.size() + lines.size(), "fragment of no input primitive");
   }
   fuzz::check(f.fragments.size() <= s.fragments_depth_pass, "more fragments kept than passed the depth test");
   return 0;
