@@ -9,13 +9,15 @@
 
 #include "command.hpp"
 #include "model/config/config.hpp"
+#include "model/unit/io.hpp"
 #include "model/vectors/codegen.hpp"
 #include "model/vectors/vectors.hpp"
 
 namespace {
 
 struct Opts {
-  std::string config, sv, ports_dir;
+  std::string config, sv, ports_dir, rec_sv;
+  int varyings = 2;
 };
 
 void write_file(const std::string& path, const std::string& text) {
@@ -39,13 +41,23 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_option("--emit-sv", o->sv, "write the SystemVerilog package fxr_vec_pkg to this file");
   sub.add_option("--emit-ports", o->ports_dir,
                  "write <unit>_ports_gen.hpp (Verilator port adapters) for every unit into this folder");
+  sub.add_option("--emit-records-sv", o->rec_sv,
+                 "write the SystemVerilog package fxr_rec_pkg (a packed struct per back-end stage record)");
+  sub.add_option("--varyings", o->varyings, "varyings of the records of --emit-records-sv (default 2)")
+      ->check(CLI::Range(0, fxr::kMaxVaryings));
   return [o]() {
-    if (o->sv.empty() && o->ports_dir.empty()) throw fxr::ConfigError("layout: give --emit-sv and/or --emit-ports");
+    if (o->sv.empty() && o->ports_dir.empty() && o->rec_sv.empty())
+      throw fxr::ConfigError("layout: give --emit-sv, --emit-ports and/or --emit-records-sv");
     const fxr::Config cfg = o->config.empty() ? fxr::Config{} : fxr::load_config(o->config);
     if (!o->sv.empty()) {
       std::ostringstream os;
       fxr::emit_sv_vector_package(os, cfg);
       write_file(o->sv, os.str());
+    }
+    if (!o->rec_sv.empty()) {
+      std::ostringstream os;
+      fxr::emit_sv_record_package(os, cfg, o->varyings);
+      write_file(o->rec_sv, os.str());
     }
     if (!o->ports_dir.empty()) {
       std::filesystem::create_directories(o->ports_dir);

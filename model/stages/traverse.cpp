@@ -4,14 +4,22 @@
 namespace fxr {
 
 StageCost TraverseStage::cost(const Config& cfg) {
+  // rtl/fxr_traverse.sv (docs/rtl.md, "fxr_traverse"): one direct evaluation per triangle, then per
+  // row an MSB-first search of the three edges' bounds, one offset bit per clock, n = bits of the
+  // rectangle width. Latency 2 + n to the first span, a row every n + 1 clocks, a triangle
+  // 1 + rows·(n + 1) clocks. The figures below are the n = 0 case (1-pixel-wide rectangles).
   const RasterConfig& r = cfg.raster;
+  const int pb = r.window_int_bits, ab = edge_value_bits(r) + 1, ob = pb + 1;
   StageCost c;
-  c.latency = 2;  // row start step, interval ends (estimate until rtl/ has the stage)
-  c.ii = 1;       // one span per clock
-  // Three edge steppers in x and y, and the interval-end divisions of wide rows (3 dividers of
-  // edge_value_bits by edge_coef_bits, counted as their adder width).
-  c.adder_bits = 3 * 2 * (int64_t)edge_value_bits(r) + 3 * (int64_t)edge_value_bits(r) * edge_coef_bits(r);
-  c.ff_bits = c.latency * record_bits<Span>(cfg, 0);
+  c.latency = 2;
+  c.ii = 2;
+  for (int k = 0; k < 3; ++k) {
+    c.add_mult(edge_coef_bits(r), pb);  // a_k·x0
+    c.add_mult(edge_coef_bits(r), pb);  // b_k·y0
+  }
+  // Per edge: the evaluation's three adds, the search step, the row step, two bound comparisons.
+  c.adder_bits = 3 * (5 * (int64_t)ab + 2 * ob) + 2 * pb + 2 * ob;
+  c.ff_bits = 3 * (5 * (int64_t)ab + ob + 2) + kPrimIdBits + 3 * pb + 3 * ob + record_bits<Span>(cfg, 0) + 3;
   return c;
 }
 

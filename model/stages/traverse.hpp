@@ -125,7 +125,8 @@ class TraverseStage {
     });
   }
 
-  // Planned RTL: three edge steppers (edge_value_bits adders), one row per clock.
+  // rtl/fxr_traverse.sv: a row every n + 1 clocks, n = bits of the candidate rectangle's width
+  // (docs/rtl.md, "fxr_traverse"); cost() gives the n = 0 figures.
   static StageCost cost(const Config& cfg);
 
  private:

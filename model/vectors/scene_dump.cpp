@@ -393,7 +393,15 @@ std::string field_diff(const VecLayout& lay, const VecRow& a, const VecRow& b) {
 
 }  // namespace
 
-RestepReport restep_scene_vectors(const std::string& dir, size_t max_report) {
+namespace {
+
+// scene.json of a dump: its JSON, configuration and draw state.
+struct SceneManifest {
+  json j;
+  Config cfg;
+  DrawState st;
+};
+SceneManifest read_scene_manifest(const std::string& dir) {
   const std::string sp = dir + "/scene.json";
   if (!std::ifstream(sp)) throw ConfigError(sp + ": cannot open (not a scene dump folder?)");
   const json j = read_json_file(sp, "scene dump manifest");
@@ -410,6 +418,34 @@ RestepReport restep_scene_vectors(const std::string& dir, size_t max_report) {
     if (!v.j) throw ConfigError(sp + ": field 'draw_state' is missing");
     st.visit(v, RecordShape{cfg, 0});
   }
+  return {j, cfg, st};
+}
+
+}  // namespace
+
+SceneStageVectors load_scene_stage(const std::string& dir, const std::string& stage) {
+  const SceneManifest m = read_scene_manifest(dir);
+  const RecordShape shape{m.cfg, m.st.num_varyings};
+  std::optional<SceneStageVectors> r;
+  for_each_stage([&](auto ic) {
+    using S = std::tuple_element_t<decltype(ic)::value, Stages>;
+    if (stage != S::kName) return;
+    LoadedFile in = load_file(dir, stage, "in", in_layout<S>(shape), m.j.at("config"));
+    LoadedFile out = load_file(dir, stage, "out", out_layout<S>(shape), m.j.at("config"));
+    check_headers(in, out);
+    r.emplace(SceneStageVectors{stage, m.cfg, m.st.num_varyings, {}, {}});
+    r->in = SceneStageFile{in.path, in.lay, in_header_size<S>(), in.rows, std::move(in.data)};
+    r->out = SceneStageFile{out.path, out.lay, kOutHeader, out.rows, std::move(out.data)};
+  });
+  if (!r) throw ConfigError(dir + ": no stage named '" + stage + "' (the stages: convert … divide)");
+  return std::move(*r);
+}
+
+RestepReport restep_scene_vectors(const std::string& dir, size_t max_report) {
+  const SceneManifest m = read_scene_manifest(dir);
+  const json& j = m.j;
+  const Config& cfg = m.cfg;
+  const DrawState& st = m.st;
   const RecordShape shape{cfg, st.num_varyings};
   RestepReport rep;
   FrameOutput frame;

@@ -26,6 +26,7 @@
 #include "model/config/config.hpp"
 #include "model/unit/io.hpp"
 #include "model/unit/raster_unit.hpp"
+#include "model/vectors/vectors.hpp"
 
 namespace fxr {
 
@@ -79,5 +80,34 @@ struct RestepReport {
   }
 };
 RestepReport restep_scene_vectors(const std::string& dir, size_t max_report = 20);
+
+}  // namespace fxr
+
+namespace fxr {
+
+// One stage's two files of a dump, read and validated as restep_scene_vectors does (manifests
+// against the records' layouts at the dump's configuration, transaction headers consistent): what
+// an RTL testbench drives (in) and expects (out). Rows are flat: row r, field f at
+// data[r·lay.size() + f]; the record's fields follow the header columns (in: txn, n_out[, ctx];
+// out: txn, seq, last).
+struct SceneStageFile {
+  std::string path;  // the hex file (error messages: path:line, line = row + 1)
+  VecLayout lay;
+  size_t header = 0;  // header columns before the record's fields
+  uint64_t rows = 0;
+  std::vector<vec_word> data;
+  VecRow row(uint64_t r) const {
+    const size_t n = lay.size();
+    return VecRow(data.begin() + (ptrdiff_t)(r * n), data.begin() + (ptrdiff_t)((r + 1) * n));
+  }
+};
+struct SceneStageVectors {
+  std::string stage;
+  Config cfg;
+  int num_varyings = 0;
+  SceneStageFile in, out;
+};
+// Throws ConfigError naming the file (and line / field) on any inconsistency.
+SceneStageVectors load_scene_stage(const std::string& dir, const std::string& stage);
 
 }  // namespace fxr
