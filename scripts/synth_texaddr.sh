@@ -7,7 +7,9 @@
 #   both      fxr_texaddr itself (filter_i free: nearest and bilinear in one datapath)
 #   nearest   a wrapper tying filter_i to tex_addr_filter_e nearest (Yosys removes the rest)
 #   bilinear  a wrapper tying filter_i to bilinear
-# Usage: scripts/synth_texaddr.sh PKG OUTDIR [both|nearest|bilinear ...]
+# Usage: [FAST=1] scripts/synth_texaddr.sh PKG OUTDIR [both|nearest|bilinear ...]
+#   FAST=1: `abc -lut 4 -fast` (ABC's short script) instead of the full one; docs/texaddr.md gives
+#   both figures where the full script finishes.
 #   PKG: the generated package (build/gen/fxr_config_pkg.sv, or `fxraster config --emit-sv F`).
 # Prints one line per top: "<top> lut4=N ff=N depth=N seconds=S". Runs under nice -n 19.
 set -euo pipefail
@@ -54,10 +56,10 @@ for which in "${tops[@]}"; do
   esac
   log="$out/$which.log"
   t0=$(date +%s)
-  nice -n 19 yosys -q -l "$log" -p "read_verilog -sv $pkg $files; synth -flatten -top $top; abc -lut 4; opt_clean; tee -o $out/$which.stat stat; tee -o $out/$which.ltp ltp -noff" > /dev/null
+  nice -n 19 yosys -q -l "$log" -p "read_verilog -sv $pkg $files; synth -flatten -top $top; abc -lut 4 ${FAST:+-fast}; opt_clean; tee -o $out/$which.stat stat; tee -o $out/$which.ltp ltp -noff" > /dev/null
   t1=$(date +%s)
   lut=$(awk '$1 == "$lut" {print $2}' "$out/$which.stat" | tail -1)
   ff=$(awk '$1 ~ /^\$_.*DFF/ {s += $2} END {print s + 0}' "$out/$which.stat")
   depth=$(sed -n 's/.*Longest topological path in \S* (length=\([0-9]*\)).*/\1/p' "$out/$which.ltp" | tail -1)
-  echo "$which lut4=$lut ff=$ff depth=$depth seconds=$((t1 - t0))"
+  echo "$which${FAST:+ (abc -fast)} lut4=$lut ff=$ff depth=$depth seconds=$((t1 - t0))"
 done
