@@ -23,9 +23,9 @@
 // (1 clock for 1-pixel-wide rectangles, 10 for 512 pixels).
 //
 // Timing (TraverseStage::cost()): the first span is valid n + 2 clocks after the input transfer;
-// rows take n + 1 clocks each; a triangle occupies the unit for 1 + rows·(n + 1) clocks
-// (in_ready_o is high only between triangles). out_ready_i low holds a found span and stops the
-// walk; no span is lost or duplicated.
+// rows take n + 1 clocks each; a triangle occupies the unit for rows·(n + 1) clocks (the next
+// one is accepted in the clock that finishes the last row; an empty rectangle takes one clock).
+// out_ready_i low holds a found span and stops the walk; no span is lost or duplicated.
 module fxr_traverse #(
   parameter int SubpixelBits  = fxr_config_pkg::RasterSubpixelBits,
   parameter int WindowIntBits = fxr_config_pkg::RasterWindowIntBits,
@@ -85,11 +85,15 @@ module fxr_traverse #(
 
   // Biased edge values at the centre of pixel (x0, y0): X = x0·2^g + 2^(g−1), so
   // a·X + b·Y + c = (a·x0 + b·y0)·2^g + (a + b)·2^(g−1) + c.
+  // The products at their own width (ECB + PB signed bits hold them), then widened.
+  logic signed [ECB+PB-1:0] in_ax [3], in_by [3];
   logic signed [AB-1:0] in_v [3];
   logic signed [AB-1:0] in_ds0 [3];  // d_k·2^(n−1): the first search step
   always_comb begin
     for (int k = 0; k < 3; k++) begin
-      in_v[k] = ((AB'(in_a[k]) * AB'(in_x0) + AB'(in_b[k]) * AB'(in_y0)) <<< G)
+      in_ax[k] = in_a[k] * in_x0;
+      in_by[k] = in_b[k] * in_y0;
+      in_v[k] = ((AB'(in_ax[k]) + AB'(in_by[k])) <<< G)
               + ((AB'(in_a[k]) + AB'(in_b[k])) <<< (G - 1)) + AB'(in_c[k]) - AB'(in_bias[k]);
       in_ds0[k] = in_n == '0 ? '0 : (AB'(in_a[k]) <<< G) <<< (in_n - NB'(1));
     end
@@ -142,10 +146,12 @@ module fxr_traverse #(
     if (lo > hi) row_empty = 1'b1;
   end
 
-  logic fin_stall, last_row;
+  // The next triangle is accepted while idle or in the clock that finishes the last row.
+  logic fin_stall, last_row, accept;
   assign fin_stall   = ~row_empty & out_valid_q & ~out_ready_i;
   assign last_row    = y_q == y1_q;
-  assign in_ready_o  = state_q == StIdle;
+  assign in_ready_o  = state_q == StIdle || (state_q == StFin && last_row && !fin_stall);
+  assign accept      = in_valid_i & in_ready_o;
   assign out_valid_o = out_valid_q;
   assign out_o       = out_q;
 
@@ -156,12 +162,13 @@ module fxr_traverse #(
     end else begin
       if (out_valid_q && out_ready_i) out_valid_q <= 1'b0;
       unique case (state_q)
-        StIdle: if (in_valid_i && !in_empty) state_q <= in_n == '0 ? StFin : StSearch;
+        StIdle: if (accept && !in_empty) state_q <= in_n == '0 ? StFin : StSearch;
         StSearch: if (tb_q[0]) state_q <= StFin;
         StFin: if (!fin_stall) begin
           if (!row_empty) out_valid_q <= 1'b1;
-          if (last_row) state_q <= StIdle;
-          else state_q <= tb0_q == '0 ? StFin : StSearch;
+          if (!last_row) state_q <= tb0_q == '0 ? StFin : StSearch;
+          else if (accept && !in_empty) state_q <= in_n == '0 ? StFin : StSearch;
+          else state_q <= StIdle;
         end
         default: state_q <= StIdle;
       endcase
@@ -170,54 +177,49 @@ module fxr_traverse #(
 
   // Datapath registers (no reset: qualified by state_q / out_valid_q).
   always_ff @(posedge clk_i) begin
-    unique case (state_q)
-      StIdle: if (in_valid_i) begin
-        prim_q <= in_i.prim;
-        x0_q   <= in_x0;
-        y_q    <= in_y0;
-        y1_q   <= in_y1;
-        w_q    <= in_w[OB-1:0];
-        tb0_q  <= in_n == '0 ? '0 : OB'(1) << (in_n - NB'(1));
-        tb_q   <= in_n == '0 ? '0 : OB'(1) << (in_n - NB'(1));
-        for (int k = 0; k < 3; k++) begin
-          dy_q[k]   <= AB'(in_b[k]) <<< G;
-          dpos_q[k] <= in_a[k] > 0;
-          dneg_q[k] <= in_a[k] < 0;
-          ds0_q[k]  <= in_ds0[k];
-          ds_q[k]   <= in_ds0[k];
-          v_q[k]    <= in_v[k];
-          acc_q[k]  <= in_v[k];
-          t_q[k]    <= '0;
+    if (state_q == StFin && !fin_stall && !row_empty) begin
+      out_q.prim <= prim_q;
+      out_q.y    <= y_q;
+      out_q.x0   <= x0_q + PB'(lo);
+      out_q.x1   <= x0_q + PB'(hi);
+    end
+    if (accept) begin
+      prim_q <= in_i.prim;
+      x0_q   <= in_x0;
+      y_q    <= in_y0;
+      y1_q   <= in_y1;
+      w_q    <= in_w[OB-1:0];
+      tb0_q  <= in_n == '0 ? '0 : OB'(1) << (in_n - NB'(1));
+      tb_q   <= in_n == '0 ? '0 : OB'(1) << (in_n - NB'(1));
+      for (int k = 0; k < 3; k++) begin
+        dy_q[k]   <= AB'(in_b[k]) <<< G;
+        dpos_q[k] <= in_a[k] > 0;
+        dneg_q[k] <= in_a[k] < 0;
+        ds0_q[k]  <= in_ds0[k];
+        ds_q[k]   <= in_ds0[k];
+        v_q[k]    <= in_v[k];
+        acc_q[k]  <= in_v[k];
+        t_q[k]    <= '0;
+      end
+    end else if (state_q == StSearch) begin
+      tb_q <= tb_q >> 1;
+      for (int k = 0; k < 3; k++) begin
+        ds_q[k] <= ds_q[k] >>> 1;
+        if (take[k]) begin
+          acc_q[k] <= try_v[k];
+          t_q[k]   <= t_q[k] | tb_q;
         end
       end
-      StSearch: begin
-        tb_q <= tb_q >> 1;
-        for (int k = 0; k < 3; k++) begin
-          ds_q[k] <= ds_q[k] >>> 1;
-          if (take[k]) begin
-            acc_q[k] <= try_v[k];
-            t_q[k]   <= t_q[k] | tb_q;
-          end
-        end
+    end else if (state_q == StFin && !fin_stall) begin
+      y_q  <= y_q + PB'(1);
+      tb_q <= tb0_q;
+      for (int k = 0; k < 3; k++) begin
+        v_q[k]   <= v_q[k] + dy_q[k];
+        acc_q[k] <= v_q[k] + dy_q[k];
+        ds_q[k]  <= ds0_q[k];
+        t_q[k]   <= '0;
       end
-      StFin: if (!fin_stall) begin
-        if (!row_empty) begin
-          out_q.prim <= prim_q;
-          out_q.y    <= y_q;
-          out_q.x0   <= x0_q + PB'(lo);
-          out_q.x1   <= x0_q + PB'(hi);
-        end
-        y_q  <= y_q + PB'(1);
-        tb_q <= tb0_q;
-        for (int k = 0; k < 3; k++) begin
-          v_q[k]   <= v_q[k] + dy_q[k];
-          acc_q[k] <= v_q[k] + dy_q[k];
-          ds_q[k]  <= ds0_q[k];
-          t_q[k]   <= '0;
-        end
-      end
-      default: ;
-    endcase
+    end
   end
 
 endmodule
