@@ -38,7 +38,10 @@ def rtl_files(rtl_dir, unit):
     top = os.path.join(rtl_dir, "fxr_%s.sv" % unit)
     if not os.path.exists(top):
         raise SystemExit("synth_cost.py: %s: not found (the unit's RTL has not landed?)" % top)
-    others = sorted(f for f in glob.glob(os.path.join(rtl_dir, "fxr_*.sv")) if f != top)
+    # Modules with record ports (fxr_rec_pkg, docs/rtl.md) are not read for a unit that does not
+    # use them: their package is generated beside fxr_config_pkg only when needed (see main()).
+    others = sorted(f for f in glob.glob(os.path.join(rtl_dir, "fxr_*.sv"))
+                    if f != top and "fxr_rec_pkg" not in open(f).read())
     return [top] + others
 
 
@@ -123,11 +126,13 @@ def main():
 
     files = [os.path.abspath(f) for f in rtl_files(a.rtl_dir, a.unit)]
     pkg = os.path.abspath(a.pkg)
+    if "fxr_rec_pkg" in open(files[0]).read():  # record ports: the generated fxr_rec_pkg.sv beside PKG
+        pkg += " " + os.path.join(os.path.dirname(pkg), "fxr_rec_pkg.sv")
     configs = json.load(open(a.configs))
     os.makedirs(a.cache, exist_ok=True)
     tools = subprocess.run(["yosys", "-V"], capture_output=True, text=True).stdout.strip()
     src_hash = hashlib.sha256()
-    for f in [pkg] + files:
+    for f in pkg.split() + files:
         src_hash.update(open(f, "rb").read())
     rows = []
     for i, cfg in enumerate(configs):
