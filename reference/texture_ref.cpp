@@ -110,8 +110,8 @@ RefTexAxis exact_ref_axis(TexFilter filter, TexWrap wrap, const mpq_class& u, ui
 
 RefTexAxis ref_tex_axis(TexFilter filter, TexWrap wrap, double u, uint32_t size) {
   RefTexAxis a;
-  if (!std::isfinite(u)) return a;
   double x = u * size;
+  if (!std::isfinite(x)) return a;  // NaN, ±Inf, or a product beyond double
   if (filter == TexFilter::Bilinear) x -= 0.5;
   const double i0 = std::floor(x);
   ref_wrap(wrap, i0, size, &a.i0, &a.border0);
@@ -128,7 +128,8 @@ RefTexAxis ref_tex_axis(TexFilter filter, TexWrap wrap, double u, uint32_t size)
 TexAxis ref_tex_axis_rounded(const TexAddrConfig& c, double u, uint32_t size, double* x_out, double* i0_out) {
   TexAxis a;
   const bool bil = c.filter == TexFilter::Bilinear;
-  double x = std::isfinite(u) ? u * size - (bil ? 0.5 : 0.0) : 0.0;
+  double x = u * size - (bil ? 0.5 : 0.0);
+  if (!std::isfinite(x)) x = 0;  // NaN, ±Inf, or a product beyond double: as ref_tex_axis (texel 0)
   double i0 = std::floor(x);
   if (bil) {
     const double one_f = std::ldexp(1.0, c.weight_frac_bits);

@@ -52,13 +52,14 @@ RefTexAxis exact_ref_axis(TexFilter filter, TexWrap wrap, const mpq_class& u, ui
 // ---- double (the reference image) --------------------------------------------------------------
 
 // Contract: the rules above on a double coordinate (floor and fraction in double; the modulo by
-// fmod, exact on integers). NaN or ±Inf: index 0, weight 0 (the reference image's choice).
+// fmod, exact on integers). NaN, ±Inf or u·size beyond double: index 0, weight 0 (the reference
+// image's choice).
 RefTexAxis ref_tex_axis(TexFilter filter, TexWrap wrap, double u, uint32_t size);
 
 // Contract: the correctly rounded address on a double coordinate, as exact_tex_axis_rounded:
 // bilinear weight = round-half-even(frac · 2^F) with the carry into i0 + 1 at 2^F. *x_out
 // (optional) receives the double u·size (− ½ for bilinear), *i0_out the unwrapped i0 after the
-// carry. Non-finite u: as ref_tex_axis.
+// carry. Non-finite u·size: as ref_tex_axis (x = 0).
 TexAxis ref_tex_axis_rounded(const TexAddrConfig& cfg, double u, uint32_t size, double* x_out = nullptr,
                              double* i0_out = nullptr);
 

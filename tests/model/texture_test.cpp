@@ -1,6 +1,7 @@
 // Texel fetch and filter (model/stages/texfilter.hpp) against an exact GMP blend, the texture
 // references of reference/texture_ref.hpp against the texture address unit and each other, the
 // checker texture, and PNG write / read.
+#include <cmath>
 #include <cstdio>
 #include <random>
 
@@ -157,6 +158,14 @@ TEST(TextureRef, DoubleAddressAgreesWithTheExactOneAwayFromTies) {
   EXPECT_EQ(ref_tex_axis(TexFilter::Nearest, TexWrap::Repeat, -1e-300, 64).i0, 63u);
   EXPECT_EQ(ref_tex_axis(TexFilter::Nearest, TexWrap::MirroredRepeat, -1e-300, 64).i0, 0u);
   EXPECT_EQ(ref_tex_axis(TexFilter::Nearest, TexWrap::Repeat, std::nan(""), 64).i0, 0u);
+  for (double huge : {1e308, -1e308, HUGE_VAL})  // u·size overflows: texel 0, no undefined conversion
+    for (TexWrap w : kWraps) {
+      EXPECT_EQ(ref_tex_axis(TexFilter::Bilinear, w, huge, 64).i0, 0u);
+      TexAddrConfig c;
+      c.filter = TexFilter::Bilinear;
+      c.wrap = w;
+      EXPECT_LT(ref_tex_axis_rounded(c, huge, 64).i1, 64u);
+    }
 }
 
 TEST(Checker, SquaresAlternateFromColourA) {
