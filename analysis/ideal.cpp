@@ -50,7 +50,11 @@ IdealJudge::IdealJudge(const DrawState& st, const std::vector<ClipTriangle>& tri
     for (int i = 0; i < 3; ++i) {
       V& v = tris_[t * 3 + i];
       for (int c = 0; c < 4; ++c) v.p[c] = scaled(tris[t].v[i].pos[c], &v.finite);
-      for (int k = 0; k < st.num_varyings; ++k) v.v[k] = scaled(tris[t].v[i].var[k], &v.finite);
+      // Varyings under the unit's rule for non-finite values (docs/pipeline.md, stage 1).
+      for (int k = 0; k < st.num_varyings; ++k) {
+        bool replaced = false;
+        v.v[k] = scaled((float)ref_varying_input(tris[t].v[i].var[k], &replaced), &v.finite);
+      }
     }
 }
 

@@ -84,7 +84,8 @@ json ref_stats_json(const RefStats& s) {
   return {{"prims_in", s.prims_in}, {"prims_drawn", s.prims_drawn}, {"prims_culled_outside", s.prims_culled_outside},
           {"prims_culled_zero_area", s.prims_culled_zero_area}, {"prims_culled_backface", s.prims_culled_backface},
           {"prims_culled_no_samples", s.prims_culled_no_samples},
-          {"prims_rejected_nonfinite", s.prims_rejected_nonfinite}, {"fragments_generated", s.fragments_generated},
+          {"prims_rejected_nonfinite", s.prims_rejected_nonfinite},
+          {"prims_varying_nonfinite", s.prims_varying_nonfinite}, {"fragments_generated", s.fragments_generated},
           {"fragments_depth_pass", s.fragments_depth_pass}, {"fragments_depth_fail", s.fragments_depth_fail}};
 }
 

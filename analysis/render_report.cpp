@@ -180,8 +180,10 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
   md << "| culled: zero area | " << s.prims_culled_zero_area << " | " << rf.stats.prims_culled_zero_area << " |\n";
   md << "| culled: back face | " << s.prims_culled_backface << " | " << rf.stats.prims_culled_backface << " |\n";
   md << "| culled: no samples (model: empty box; reference: no sample) | " << s.prims_culled_no_samples << " | " << rf.stats.prims_culled_no_samples << " |\n";
-  md << "| rejected: NaN / Inf / range | " << s.prims_rejected_nan << " / " << s.prims_rejected_inf << " / "
+  md << "| rejected: NaN / Inf in a position / range | " << s.prims_rejected_nan << " / " << s.prims_rejected_inf << " / "
      << s.prims_rejected_range << " | " << rf.stats.prims_rejected_nonfinite << " (non-finite) |\n";
+  md << "| of those in: NaN / ±Inf varying replaced by 0 / ±FLT_MAX (docs/pipeline.md, stage 1) | "
+     << s.prims_varying_nonfinite << " | " << rf.stats.prims_varying_nonfinite << " |\n";
   md << "| fragments generated | " << s.fragments_generated << " | " << rf.stats.fragments_generated << " |\n";
   md << "| fragments passing depth | " << s.fragments_depth_pass << " | " << rf.stats.fragments_depth_pass << " |\n\n";
   if (!sc.lines.empty()) {

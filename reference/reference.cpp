@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
@@ -67,15 +68,16 @@ RefFrame run_reference(const DrawState& st, const std::vector<ClipTriangle>& tri
   for (size_t prim = 0; prim < tris.size(); ++prim) {
     ++f.stats.prims_in;
     std::vector<DVert> poly(3);
-    bool finite = true;
+    bool finite = true, replaced = false;
     for (int k = 0; k < 3; ++k) {
       for (int i = 0; i < 4; ++i) finite &= std::isfinite(poly[k].p[i] = tris[prim].v[k].pos[i]);
-      for (int i = 0; i < nv; ++i) finite &= std::isfinite(poly[k].v[i] = tris[prim].v[k].var[i]);
+      for (int i = 0; i < nv; ++i) poly[k].v[i] = ref_varying_input(tris[prim].v[k].var[i], &replaced);
     }
     if (!finite) {
       ++f.stats.prims_rejected_nonfinite;
       continue;
     }
+    if (replaced) ++f.stats.prims_varying_nonfinite;
     // Clip volume 0 ≤ z_c ≤ w_c (implies w_c ≥ 0); x, y need no clipping in double.
     poly = clip_plane(poly, nv, [](const DVert& v) { return v.p[2]; });
     if (poly.size() >= 3) poly = clip_plane(poly, nv, [](const DVert& v) { return v.p[3] - v.p[2]; });
@@ -197,9 +199,17 @@ RefSample reference_at_pixel(const DrawState& st, const ClipTriangle& tri, int n
   r.valid = true;
   r.w = w;
   r.depth = z / w;
+  bool replaced = false;
   for (int k = 0; k < num_varyings; ++k)
-    r.var[k] = b[0] * tri.v[0].var[k] + b[1] * tri.v[1].var[k] + b[2] * tri.v[2].var[k];
+    r.var[k] = b[0] * ref_varying_input(tri.v[0].var[k], &replaced) + b[1] * ref_varying_input(tri.v[1].var[k], &replaced) +
+               b[2] * ref_varying_input(tri.v[2].var[k], &replaced);
   return r;
+}
+
+double ref_varying_input(float f, bool* replaced) {
+  if (std::isfinite(f)) return f;
+  *replaced = true;
+  return std::isnan(f) ? 0.0 : std::copysign((double)std::numeric_limits<float>::max(), (double)f);
 }
 
 // ---- exact ------------------------------------------------------------------------------------

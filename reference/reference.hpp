@@ -36,8 +36,14 @@ struct RefFragment {
 struct RefStats {
   uint64_t prims_in = 0, prims_drawn = 0, prims_culled_outside = 0, prims_culled_zero_area = 0,
            prims_culled_backface = 0, prims_culled_no_samples = 0, prims_rejected_nonfinite = 0,
-           fragments_generated = 0, fragments_depth_pass = 0, fragments_depth_fail = 0;
+           prims_varying_nonfinite = 0, fragments_generated = 0, fragments_depth_pass = 0,
+           fragments_depth_fail = 0;
 };
+
+// Contract: the value a varying input stands for under the unit's rule for non-finite varyings
+// (docs/pipeline.md, stage 1), in double: NaN → 0, ±Inf → ±FLT_MAX, a finite value itself.
+// *replaced is set when a value was replaced.
+double ref_varying_input(float f, bool* replaced);
 
 struct RefFrame {
   int width = 0, height = 0;
@@ -47,7 +53,8 @@ struct RefFrame {
 };
 
 // Contract: double-precision ideal pipeline (see above). Primitives with a NaN or infinity in
-// a position or used varying are rejected (counted). Deterministic.
+// a position are rejected (counted); a NaN / infinity in a used varying is replaced
+// (ref_varying_input, counted as prims_varying_nonfinite). Deterministic.
 RefFrame run_reference(const DrawState& st, const std::vector<ClipTriangle>& tris);
 
 struct RefSample {
@@ -58,7 +65,8 @@ struct RefSample {
 };
 
 // Contract: ideal perspective-correct values of `tri` at window point (wx, wy) (pixel centre:
-// (x + ½, y + ½)); exact up to double rounding, independent of clipping.
+// (x + ½, y + ½)); exact up to double rounding, independent of clipping. Varyings through
+// ref_varying_input.
 RefSample reference_at_pixel(const DrawState& st, const ClipTriangle& tri, int num_varyings, double wx, double wy);
 
 // Top-left fill rule in y-up window coordinates for a counter-clockwise (positive-area)

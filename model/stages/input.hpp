@@ -1,5 +1,6 @@
-// model/stages/input.hpp — stage 1: input conversion. float32 bit patterns → exact FxFloats,
-// NaN / Inf flagged (never converted). docs/pipeline.md, stage 1.
+// model/stages/input.hpp — stage 1: input conversion. float32 bit patterns → exact FxFloats;
+// NaN / Inf in a position flagged (the primitive is rejected), NaN / ±Inf in an active varying
+// replaced by a finite value (0 / ±FLT_MAX) and counted. docs/pipeline.md, stage 1.
 //
 // Nothing is rounded: every finite float32 is exactly an FxFloat with a significand below 2^24
 // (model/arith/fxfloat.hpp), denormals included. The stage reads no configuration field; only
@@ -70,9 +71,9 @@ struct ClipSpaceTriangle {
 using ExactTriangle = ClipSpaceTriangle;
 
 enum class ConvertOutcome : uint8_t {
-  Emitted,
-  RejectedNaN,    // a NaN in a position or an active varying (takes precedence over Inf)
-  RejectedInf,    // an infinity
+  Emitted,        // (non-finite varyings, if any, replaced: ConvertStage::varyings_replaced())
+  RejectedNaN,    // a NaN in a position (takes precedence over Inf)
+  RejectedInf,    // an infinity in a position
   RejectedRange,  // the draw state asks for more than kMaxVaryings varyings
 };
 
@@ -84,6 +85,21 @@ inline FxFloat convert_input(float f, bool& nan, bool& inf) {
   return d.value;  // Zero / Denormal / Normal: exact (denormals are not flushed)
 }
 
+// Contract (the varying rule, docs/pipeline.md stage 1): the float32 bits a varying is converted
+// from. NaN (any sign, any payload) → +0 (all bits zero); ±Inf → ±FLT_MAX (sign kept, exponent
+// kF32ExpMax − 1, fraction all ones); every finite value unchanged. *replaced is set when a
+// value was replaced. In hardware: the exponent all-ones detect of the component selects a
+// constant (one 32-bit 2:1 multiplexer per varying lane), nothing else.
+inline uint32_t varying_input_bits(uint32_t bits, bool* replaced) {
+  constexpr uint32_t kSign = 1u << (kF32FracBits + kF32ExpBits);
+  constexpr uint32_t kFracMask = (1u << kF32FracBits) - 1;
+  constexpr uint32_t kMaxFinite = ((uint32_t)(kF32ExpMax - 1) << kF32FracBits) | kFracMask;  // FLT_MAX
+  if (((bits >> kF32FracBits) & kF32ExpMax) != (uint32_t)kF32ExpMax) return bits;
+  *replaced = true;
+  if (bits & kFracMask) return 0;       // NaN → +0
+  return (bits & kSign) | kMaxFinite;   // ±Inf → ±FLT_MAX
+}
+
 class ConvertStage {
  public:
   static constexpr const char* kName = "convert";
@@ -92,28 +108,38 @@ class ConvertStage {
 
   ConvertStage(const Config&, const DrawState& st) : nv_(st.num_varyings) {}
 
-  // 1 → 0..1: the exact triangle, or the reason it was rejected.
+  // 1 → 0..1: the exact triangle, or the reason it was rejected. A NaN / Inf in a position
+  // rejects the primitive; in an active varying it is replaced (varying_input_bits) and the
+  // triangle goes on exactly as if that finite value had been given.
   template <class Emit>
   ConvertOutcome step(const In& in, Emit&& emit) {
+    replaced_ = false;
     if (nv_ < 0 || nv_ > kMaxVaryings) return ConvertOutcome::RejectedRange;  // bad draw state
-    bool nan = false, inf = false;
+    bool nan = false, inf = false, replaced = false;
     out_.prim = in.prim;
     for (int i = 0; i < 3; ++i) {
       for (int c = 0; c < 4; ++c) out_.v[i].p[c] = convert_input(in.tri.v[i].pos[c], nan, inf);
-      for (int k = 0; k < nv_; ++k) out_.v[i].v[k] = convert_input(in.tri.v[i].var[k], nan, inf);
+      for (int k = 0; k < nv_; ++k)  // finite after the replacement: decoded exactly
+        out_.v[i].v[k] = decode_f32(varying_input_bits(f32_bits(in.tri.v[i].var[k]), &replaced)).value;
     }
     if (nan) return ConvertOutcome::RejectedNaN;
     if (inf) return ConvertOutcome::RejectedInf;
+    replaced_ = replaced;
     emit(static_cast<const Out&>(out_));
     return ConvertOutcome::Emitted;
   }
 
+  // After an Emitted step: whether a NaN / Inf varying of that primitive was replaced (counted
+  // as prims_varying_nonfinite).
+  bool varyings_replaced() const { return replaced_; }
+
   // Planned RTL (one register stage): per float32 an all-ones / all-zeros exponent detect and
-  // the hidden-bit insert; no arithmetic.
+  // the hidden-bit insert, per varying a 2:1 multiplexer onto a constant; no arithmetic.
   static StageCost cost(const Config& cfg);
 
  private:
   int nv_;
+  bool replaced_ = false;
   ExactTriangle out_;
 };
 

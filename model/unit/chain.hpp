@@ -63,7 +63,9 @@ class GeometryChain {
       taps_.template out<ConvertStage>(e);
       ex = &e;
     })) {
-      case ConvertOutcome::Emitted: break;
+      case ConvertOutcome::Emitted:
+        if (convert_.varyings_replaced()) ++s.prims_varying_nonfinite;
+        break;
       case ConvertOutcome::RejectedNaN: return GeomOutcome::RejectedNaN;
       case ConvertOutcome::RejectedInf: return GeomOutcome::RejectedInf;
       case ConvertOutcome::RejectedRange: return GeomOutcome::RejectedRange;

@@ -15,14 +15,14 @@ namespace fxr {
 enum class GeomOutcome : uint8_t {
   Emitted,        // ≥ 1 SetupTriangle appended to `out`
   CulledOutside,  // trivially rejected or clipped away entirely
-  RejectedNaN,
-  RejectedInf,
+  RejectedNaN,    // a NaN in a position (NaN / Inf varyings are replaced, not rejected)
+  RejectedInf,    // an infinity in a position
   RejectedRange,  // finite but beyond a format's range
 };
 
 // Contract: appends the snapped triangles of `tri` to `out` (prim index stamped on each) and
 // updates the geometry counters of `stats` (trivial accept, clipped, vertices created,
-// triangles out). The caller counts prims_in and the final disposition. Pure function of its
+// triangles out, varyings non-finite). The caller counts prims_in and the final disposition. Pure function of its
 // inputs: a shared edge of two input triangles is clipped identically in both. (Convenience
 // entry point: it sets the stages up per call; GeometryChain in model/unit/chain.hpp sets them up
 // once per frame.)

@@ -177,9 +177,12 @@ struct RasterStats {
   uint64_t prims_culled_zero_area = 0;   // zero area after snapping (all pieces)
   uint64_t prims_culled_backface = 0;
   uint64_t prims_culled_no_samples = 0;  // bounding box ∩ scissor empty
-  uint64_t prims_rejected_nan = 0;       // a NaN in position or varying
-  uint64_t prims_rejected_inf = 0;       // an infinity in position or varying
+  uint64_t prims_rejected_nan = 0;       // a NaN in a position
+  uint64_t prims_rejected_inf = 0;       // an infinity in a position
   uint64_t prims_rejected_range = 0;     // finite but beyond a format's range (documented)
+  uint64_t prims_varying_nonfinite = 0;  // finite positions, a NaN / Inf active varying replaced
+                                         // (0 / ±FLT_MAX, docs/pipeline.md stage 1); not a
+                                         // disposition: the primitive also counts as one of the above
   uint64_t fragments_generated = 0;      // covered samples
   uint64_t fragments_depth_pass = 0;
   uint64_t fragments_depth_fail = 0;
@@ -195,7 +198,7 @@ struct RasterStats {
     FXR_STAT(clip_vertices_created); FXR_STAT(clip_triangles_out); FXR_STAT(prims_drawn);
     FXR_STAT(prims_culled_outside); FXR_STAT(prims_culled_zero_area); FXR_STAT(prims_culled_backface);
     FXR_STAT(prims_culled_no_samples); FXR_STAT(prims_rejected_nan); FXR_STAT(prims_rejected_inf);
-    FXR_STAT(prims_rejected_range); FXR_STAT(fragments_generated); FXR_STAT(fragments_depth_pass);
+    FXR_STAT(prims_rejected_range); FXR_STAT(prims_varying_nonfinite); FXR_STAT(fragments_generated); FXR_STAT(fragments_depth_pass);
     FXR_STAT(fragments_depth_fail);
 #undef FXR_STAT
   }

@@ -58,22 +58,35 @@ TEST(BadInput, NaNInAnyPositionComponentIsRejected) {
     }
 }
 
-TEST(BadInput, NaNInAnActiveVaryingIsRejectedInAnInactiveOneIgnored) {
+// A NaN in a varying is replaced (by 0, docs/pipeline.md stage 1), not rejected: the snapped
+// triangle is the one without it (tests/model/nonfinite_varying_test.cpp checks the fragments).
+TEST(BadInput, NaNInAVaryingIsReplacedNotRejected) {
   ClipTriangle t = good();
   t.v[2].var[3] = kNaN;
-  EXPECT_EQ(run(t, state(64, 64, 0, 0, 4)), GeomOutcome::RejectedNaN);
+  std::vector<SetupTriangle> with_nan, without;
+  EXPECT_EQ(run(t, state(64, 64, 0, 0, 4), &with_nan), GeomOutcome::Emitted);
+  EXPECT_EQ(run(good(), state(64, 64, 0, 0, 4), &without), GeomOutcome::Emitted);
+  ASSERT_EQ(with_nan.size(), 1u);
+  ASSERT_EQ(without.size(), 1u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(with_nan[0].v[i].x, without[0].v[i].x);
+    EXPECT_EQ(with_nan[0].v[i].y, without[0].v[i].y);
+    EXPECT_EQ(with_nan[0].v[i].z, without[0].v[i].z);
+  }
   EXPECT_EQ(run(t, state(64, 64, 0, 0, 3)), GeomOutcome::Emitted);
 }
 
-TEST(BadInput, InfinitiesAreRejectedAndNaNTakesPrecedence) {
+TEST(BadInput, InfinitePositionsAreRejectedInfiniteVaryingsReplacedAndNaNTakesPrecedence) {
   const DrawState st = state(64, 64, 0, 0, 1);
   for (float inf : {kInf, -kInf}) {
     ClipTriangle t = good();
     t.v[1].pos[3] = inf;
     EXPECT_EQ(run(t, st), GeomOutcome::RejectedInf);
+    t.v[0].var[0] = kNaN;  // a NaN varying does not turn an Inf position into RejectedNaN
+    EXPECT_EQ(run(t, st), GeomOutcome::RejectedInf);
     t = good();
     t.v[0].var[0] = inf;
-    EXPECT_EQ(run(t, st), GeomOutcome::RejectedInf);
+    EXPECT_EQ(run(t, st), GeomOutcome::Emitted);
     t.v[2].pos[0] = kNaN;
     EXPECT_EQ(run(t, st), GeomOutcome::RejectedNaN);
   }

@@ -12,50 +12,16 @@
 
 #include "model/stages/setup.hpp"
 #include "model/stages/traverse.hpp"
+#include "tests/model/coverage_ref.hpp"
 
 using namespace fxr;
 
 namespace {
 
-struct P {
-  int64_t x, y;  // subpixel units
-};
-
-// ---- independent reference ------------------------------------------------------------------
-
-// Twice-scaled coordinates so that pixel centres are integers for every subpixel_bits:
-// vertex 2·x, centre of pixel i (2i + 1)·2^s.
-i128 orient(i128 ax, i128 ay, i128 bx, i128 by, i128 px, i128 py) {
-  return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
-}
-
-// D3D11: "a top edge is an edge that is exactly horizontal and is above the other edges";
-// "a left edge is an edge that is not exactly horizontal and is on the left side of the
-// triangle". With y up, "above" means greater y: the third vertex c lies below the edge.
-// Left side: at the height of c, the edge's line lies left of c.
-bool ref_top_left(P a, P b, P c) {
-  if (a.y == b.y) return c.y < a.y;
-  // x of the edge line at height c.y: a.x + (b.x − a.x)(c.y − a.y)/(b.y − a.y); is c.x greater?
-  const i128 dy = b.y - a.y;
-  const i128 lhs = (i128)(c.x - a.x) * dy, rhs = (i128)(b.x - a.x) * (c.y - a.y);
-  return dy > 0 ? lhs > rhs : lhs < rhs;
-}
-
-bool ref_covered(const P v[3], int s, int i, int j) {
-  const i128 px = (i128)(2 * i + 1) * ((i128)1 << s), py = (i128)(2 * j + 1) * ((i128)1 << s);  // i may be < 0
-  if (orient(v[0].x, v[0].y, v[1].x, v[1].y, v[2].x, v[2].y) == 0) return false;  // zero area
-  for (int k = 0; k < 3; ++k) {
-    const P a = v[k], b = v[(k + 1) % 3], c = v[(k + 2) % 3];
-    const i128 sp = orient(2 * (i128)a.x, 2 * (i128)a.y, 2 * (i128)b.x, 2 * (i128)b.y, px, py);
-    const i128 sc = orient(a.x, a.y, b.x, b.y, c.x, c.y);
-    if (sp == 0) {
-      if (!ref_top_left(a, b, c)) return false;
-    } else if ((sp > 0) != (sc > 0)) {
-      return false;
-    }
-  }
-  return true;
-}
+using covref::P;
+using covref::orient;
+using covref::ref_covered;
+using covref::ref_top_left;
 
 // ---- model under test -----------------------------------------------------------------------
 

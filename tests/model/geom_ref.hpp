@@ -235,10 +235,14 @@ inline RResult ref_geometry(const Config& cfg, const DrawState& st, const ClipTr
   RResult res;
   const int nv = st.num_varyings;
   bool nan = false, inf = false;
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 3; ++i)
     for (int c = 0; c < 4; ++c) nan |= is_nan_f(tri.v[i].pos[c]), inf |= is_inf_f(tri.v[i].pos[c]);
-    for (int k = 0; k < nv; ++k) nan |= is_nan_f(tri.v[i].var[k]), inf |= is_inf_f(tri.v[i].var[k]);
-  }
+  // Varyings: NaN → 0, ±Inf → ±(2^24 − 1)·2^104 (= ±FLT_MAX), docs/pipeline.md stage 1.
+  const auto var_q = [](float f) -> mpq_class {
+    if (is_nan_f(f)) return 0;
+    if (is_inf_f(f)) return mpq_class(mpq_class(f < 0 ? -1 : 1) * mpq_class((mpz_class(1) << 24) - 1) * pow2(104));
+    return q_of_float(f);
+  };
   if (nan) return res.outcome = GeomOutcome::RejectedNaN, res;
   if (inf) return res.outcome = GeomOutcome::RejectedInf, res;
   const RBand b = ref_band(cfg.raster, st);
@@ -246,7 +250,7 @@ inline RResult ref_geometry(const Config& cfg, const DrawState& st, const ClipTr
   std::vector<RVtx> poly(3);
   for (int i = 0; i < 3; ++i) {
     for (int c = 0; c < 4; ++c) poly[i].p[c] = q_of_float(tri.v[i].pos[c]);
-    for (int k = 0; k < nv; ++k) poly[i].v[k] = q_of_float(tri.v[i].var[k]);
+    for (int k = 0; k < nv; ++k) poly[i].v[k] = var_q(tri.v[i].var[k]);
   }
   for (int p = 0; p < 7; ++p) {  // trivial reject
     bool all_out = true;

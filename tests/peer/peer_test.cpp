@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -730,4 +731,89 @@ TEST(PeerModel, PerspectiveCoverageAndVaryingsAgreeWithLlvmpipe) {
       std::printf("%-16s v%d llvmpipe vs model: %s\n", s.name.c_str(), k, d[k].str().c_str());
     EXPECT_EQ(over, 0u) << s.name;
   }
+}
+
+// (c) NaN / ±Inf varyings (docs/pipeline.md, stage 1): GL rasterises such a triangle, and so does
+// the model (NaN → 0, ±Inf → ±FLT_MAX, counted). The covered pixels are compared with llvmpipe's:
+// pixel for pixel on the orthographic grid scene, by count (and agreement as in (b)) on a
+// perspective triangle; and with the model's own pixels for the same triangles with finite
+// varyings (exact).
+TEST(PeerModel, NonFiniteVaryingsAreRasterisedLikeLlvmpipe) {
+  FXR_PEER_OR_SKIP(peer, true);
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const auto poison = [&](std::vector<ClipTriangle>& tris) {
+    for (size_t t = 0; t < tris.size(); ++t) {
+      tris[t].v[t % 3].var[0] = nan;
+      tris[t].v[(t + 1) % 3].var[1] = t % 2 ? inf : -inf;
+    }
+  };
+  // Orthographic: the random grid scene with two varyings.
+  for (const GridScene& s : ortho_scenes()) {
+    if (s.name != "random_mixed") continue;
+    DrawState st = s.st;
+    st.num_varyings = 2;
+    std::vector<ClipTriangle> finite, tris;
+    for (const GridTri& g : s.tris) {
+      finite.push_back(to_clip(g, st));
+      finite.back().v[0].var[1] = 2.0f;
+    }
+    tris = finite;
+    poison(tris);
+    const PeerImage img = peer->render(st, tris);
+    const ModelImage mod = model_image(st, tris), fin = model_image(st, finite);
+    size_t n = 0, nf = 0, covered = 0;
+    const std::string msg = count_mismatches(mod.count, img.count, img.width, &n);
+    count_mismatches(mod.count, fin.count, img.width, &nf);
+    for (uint32_t c : img.count) covered += c != 0;
+    std::printf("non-finite varyings, %s: tris=%zu llvmpipe covered=%zu model-vs-llvmpipe differences=%zu "
+                "model-vs-model(finite) differences=%zu\n", s.name.c_str(), tris.size(), covered, n, nf);
+    EXPECT_GT(covered, 10000u);
+    EXPECT_EQ(n, 0u) << msg;
+    EXPECT_EQ(nf, 0u);
+    const RasterStats rs = run_raster_unit(Config(), st, tris).stats;
+    EXPECT_EQ(rs.prims_varying_nonfinite, tris.size());
+    EXPECT_EQ(rs.prims_rejected_nan + rs.prims_rejected_inf, 0u);
+  }
+  // Perspective: one large triangle, w from 1 to 6, NaN in v0 at one vertex, +Inf in v1 at another.
+  DrawState st;
+  st.viewport_w = 128;
+  st.viewport_h = 128;
+  st.num_varyings = 2;
+  st.depth_test = false;
+  ClipTriangle t;
+  const float p[3][4] = {{-0.9f, -0.8f, 0.2f, 1.0f}, {5.1f, -3.0f, 3.0f, 6.0f}, {-0.6f, 2.7f, 1.5f, 3.0f}};
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 4; ++c) t.v[i].pos[c] = p[i][c];
+  for (int i = 0; i < 3; ++i) t.v[i].var[0] = (float)i, t.v[i].var[1] = 3.0f - (float)i;
+  const ModelImage fin = model_image(st, {t});
+  t.v[1].var[0] = nan;
+  t.v[2].var[1] = inf;
+  const PeerImage img = peer->render(st, {t});
+  const ModelImage mod = model_image(st, {t});
+  size_t any = 0, nf = 0;
+  const size_t diff = count_differences(mod.count, img.count, &any);
+  count_mismatches(mod.count, fin.count, img.width, &nf);
+  uint64_t mc = 0, pc = 0;
+  for (uint32_t c : mod.count) mc += c;
+  for (uint32_t c : img.count) pc += c;
+  std::printf("non-finite varyings, perspective triangle: llvmpipe covered=%llu model covered=%llu "
+              "differing pixels=%zu model-vs-model(finite) differences=%zu\n",
+              (unsigned long long)pc, (unsigned long long)mc, diff, nf);
+  EXPECT_GT(pc, 4000u);
+  EXPECT_EQ(nf, 0u);
+  EXPECT_GT(100.0 * (1.0 - (double)diff / (double)any), 99.9);
+  // llvmpipe's varyings there are not finite (NaN / Inf in IEEE arithmetic); the model's are
+  // defined: v0 interpolates 0, 0, 2 where the NaN was, v1 reaches FLT_MAX-sized values.
+  size_t nonfinite_peer = 0, huge_model = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const size_t o = img.index(x, y);
+      if (!img.count[o] || !mod.count[o]) continue;
+      nonfinite_peer += !std::isfinite(img.varying(x, y, 0)) || !std::isfinite(img.varying(x, y, 1));
+      EXPECT_TRUE(std::isfinite(mod.var[o * 2]) && std::isfinite(mod.var[o * 2 + 1]));
+      huge_model += mod.var[o * 2 + 1] > 1e30;
+    }
+  std::printf("  llvmpipe fragments with a non-finite varying=%zu; model fragments with v1 > 1e30=%zu\n",
+              nonfinite_peer, huge_model);
+  EXPECT_GT(huge_model, 0u);
 }
