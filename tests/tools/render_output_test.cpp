@@ -94,6 +94,35 @@ TEST(RenderOutput, TextureLargerThanTheAddressUnitIsRefusedNamingTheField) {
   EXPECT_EQ(r.exit, 2) << r.err;
   EXPECT_NE(r.err.find("tex_addr.size_bits"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(d + "/out"));
+
+// A NaN / Inf varying (docs/pipeline.md, stage 1): the triangle is drawn, with as many fragments
+// as the same triangle with finite varyings, and stats.json and report.md count it.
+TEST(RenderOutput, NonFiniteVaryingIsDrawnAndCounted) {
+  const std::string d = scratch();
+  const auto scene = [](const std::string& a, const std::string& b) {
+    return R"({"version": 1, "viewport": {"width": 32, "height": 32}, "objects": [{"type": "clip", "triangles": [[)"
+           R"({"pos": [-0.9, -0.9, 0.5, 1], "var": [)" + a + R"(, 0]}, {"pos": [0.9, -0.8, 0.5, 1], "var": [1, )" + b +
+           R"(]}, {"pos": [0, 0.9, 0.5, 1], "var": [0, 1]}]]}]})";
+  };
+  write_file(d + "/nan.json", scene("\"nan\"", "\"-inf\""));
+  write_file(d + "/fin.json", scene("0", "1"));
+  for (const char* n : {"nan", "fin"}) {
+    const CliResult r = run_cli(d, std::string("render '") + d + "/" + n + ".json' --quiet --out '" + d + "/" + n + "'");
+    ASSERT_EQ(r.exit, 0) << r.err;
+  }
+  const std::string sn = read_file(d + "/nan/stats.json"), sf = read_file(d + "/fin/stats.json");
+  EXPECT_NE(sn.find("\"prims_varying_nonfinite\": 1"), std::string::npos) << sn;
+  EXPECT_NE(sn.find("\"prims_drawn\": 1"), std::string::npos) << sn;
+  EXPECT_NE(sf.find("\"prims_varying_nonfinite\": 0"), std::string::npos) << sf;
+  const auto field = [](const std::string& j, const std::string& k) {  // first occurrence: the model's
+    const size_t p = j.find("\"" + k + "\": ");
+    return p == std::string::npos ? std::string() : j.substr(p, j.find('\n', p) - p);
+  };
+  EXPECT_EQ(field(sn, "fragments_generated"), field(sf, "fragments_generated"));
+  EXPECT_NE(field(sf, "fragments_generated"), "\"fragments_generated\": 0,");
+  const std::string md = read_file(d + "/nan/report.md");
+  EXPECT_NE(md.find("NaN / ±Inf varying replaced by 0 / ±FLT_MAX (docs/pipeline.md, stage 1) | 1 | 1 |"), std::string::npos)
+      << md;
 }
 
 TEST(VectorsOutput, FinishedFilesOnlyAndThePreviousPairReplaced) {
