@@ -3,6 +3,7 @@
 #include "frontend/scene.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <cerrno>
 #include <cmath>
@@ -86,6 +87,17 @@ struct Node {
   std::string string() const {
     if (!j.is_string()) fail("expected a string, got " + type_of());
     return j.get<std::string>();
+  }
+  // A colour "#rrggbb": '#' and exactly 6 lowercase hex digits (docs/scene-format.md; lowercase as
+  // every hex field of the project: bits: patterns, vector files).
+  uint32_t color() const {
+    const std::string s = string();
+    uint32_t c = 0;
+    if (parse_hex_color(s, &c)) return c;
+    const bool upper = s.size() == 7 && s[0] == '#' &&
+                       std::all_of(s.begin() + 1, s.end(), [](char ch) { return std::isxdigit((unsigned char)ch); });
+    fail("expected a colour \"#rrggbb\" (6 lowercase hex digits), got " + type_of() +
+         (upper ? " (uppercase digits: write them in lowercase)" : ""));
   }
   template <class E>
   E choice(std::initializer_list<std::pair<const char*, E>> names) const {
@@ -743,7 +755,7 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
 
   if (root.has("background")) {
     const Node b = root.at("background");
-    if (!parse_hex_color(b.string(), &sc.background)) b.fail("expected a colour \"#rrggbb\", got " + b.type_of());
+    sc.background = b.color();
   } else {
     sc.background = pack_rgba(24, 24, 32);
   }
@@ -784,8 +796,7 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
     if (t.has("filter"))
       sc.config.tex_addr.filter =
           t.at("filter").choice<TexFilter>({{"nearest", TexFilter::Nearest}, {"bilinear", TexFilter::Bilinear}});
-    if (t.has("border") && !parse_hex_color(t.at("border").string(), &border))
-      t.at("border").fail("expected a colour \"#rrggbb\"");
+    if (t.has("border")) border = t.at("border").color();
     const std::string kind = t.at("kind").string();
     if (kind == "checker") {
       const int size = t.has("size") ? t.at("size").integer(1, 4096) : 64;
@@ -795,8 +806,8 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
       if (t.has("colors")) {
         const Node c = t.at("colors");
         if (!c.j.is_array() || c.j.size() != 2) c.fail("expected 2 colours [\"#rrggbb\", \"#rrggbb\"], got " + c.type_of());
-        if (!parse_hex_color(c.at(size_t{0}).string(), &a)) c.at(size_t{0}).fail("expected \"#rrggbb\"");
-        if (!parse_hex_color(c.at(size_t{1}).string(), &b)) c.at(size_t{1}).fail("expected \"#rrggbb\"");
+        a = c.at(size_t{0}).color();
+        b = c.at(size_t{1}).color();
       }
       sc.texture = make_checker(size, squares, a, b);
     } else if (kind == "png") {
@@ -834,7 +845,7 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
     if (s.has("depth_write")) sc.line_state.depth_write = s.at("depth_write").boolean();
     if (s.has("color")) {
       const Node c = s.at("color");
-      if (!parse_hex_color(c.string(), &sc.line_color)) c.fail("expected a colour \"#rrggbb\", got " + c.type_of());
+      sc.line_color = c.color();
     }
   }
 

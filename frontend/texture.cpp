@@ -64,7 +64,6 @@ bool parse_hex_color(const std::string& s, uint32_t* out) {
     int d;
     if (c >= '0' && c <= '9') d = c - '0';
     else if (c >= 'a' && c <= 'f') d = c - 'a' + 10;
-    else if (c >= 'A' && c <= 'F') d = c - 'A' + 10;
     else return false;
     v = v * 16 + d;
   }

@@ -49,7 +49,8 @@ Texture load_png_texture(const std::string& path);
 // Writes an RGBA8 image as PNG (row 0 at the bottom of the picture). Throws on I/O error.
 void write_png(const std::string& path, const Image& img);
 
-// "#rrggbb" → packed RGBA (alpha 255); returns false when malformed.
+// "#rrggbb" → packed RGBA (alpha 255); returns false when malformed (uppercase digits included:
+// the format is lowercase hex, docs/scene-format.md).
 bool parse_hex_color(const std::string& s, uint32_t* out);
 
 }  // namespace fxr

@@ -94,6 +94,20 @@ TEST(Scene, BadHexFloatNamesTheComponent) {
   EXPECT_ERROR_HAS(clip_scene("", R"([0, "bits:7fc0", 0.5, 1])"), "/objects/0/triangles/0/2/pos/1: bad bit pattern");
 }
 
+// Colours are "#rrggbb" with lowercase digits (docs/scene-format.md): uppercase is an error
+// naming the file and the field, with the reason; every colour field.
+TEST(Scene, UppercaseColourIsAnErrorNamingTheField) {
+  EXPECT_ERROR_HAS(clip_scene(R"("background": "#10A0ff",)"),
+                   "scene.json: /background: expected a colour \"#rrggbb\" (6 lowercase hex digits), got");
+  EXPECT_ERROR_HAS(clip_scene(R"("background": "#10A0ff",)"), "(uppercase digits: write them in lowercase)");
+  EXPECT_ERROR_HAS(clip_scene(R"("texture": {"kind": "checker", "colors": ["#ffffff", "#ABCDEF"]},)"),
+                   "scene.json: /texture/colors/1: expected a colour");
+  EXPECT_ERROR_HAS(clip_scene(R"("line_state": {"color": "#FFFFFF"},)"), "scene.json: /line_state/color: expected a colour");
+  EXPECT_ERROR_HAS(clip_scene(R"("background": "#10a0f",)"), "/background: expected a colour");
+  EXPECT_EQ(error_of(clip_scene(R"("background": "#10a0f",)")).find("uppercase"), std::string::npos);
+  EXPECT_EQ(error_of(clip_scene(R"("background": "#10a0ff", "texture": {"kind": "checker", "colors": ["#ffffff", "#abcdef"]},)")), "");
+}
+
 TEST(Scene, WrongVaryingCountNamesIt) {
   EXPECT_ERROR_HAS(clip_scene(R"("varyings": {"count": 3},)"), "/objects/0/triangles/0/0/var: expected 3 varyings");
 }

@@ -196,8 +196,11 @@ TEST(Png, WriteThenLoadKeepsPixelsAndOrientation) {
 
 TEST(Color, HexParsing) {
   uint32_t c = 0;
-  EXPECT_TRUE(parse_hex_color("#10a0Ff", &c));
+  EXPECT_TRUE(parse_hex_color("#10a0ff", &c));
   EXPECT_EQ(c, pack_rgba(0x10, 0xa0, 0xff));
   EXPECT_FALSE(parse_hex_color("10a0ff", &c));
   EXPECT_FALSE(parse_hex_color("#10a0fg", &c));
+  // Lowercase only (docs/scene-format.md), like bits: patterns and vector files.
+  EXPECT_FALSE(parse_hex_color("#10a0Ff", &c));
+  EXPECT_FALSE(parse_hex_color("#10A0FF", &c));
 }
