@@ -20,7 +20,18 @@ function(fxr_add_test_dir dir label)
     gtest_discover_tests(${target}
       WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}
       DISCOVERY_MODE PRE_TEST
-      DISCOVERY_TIMEOUT 60
-      PROPERTIES LABELS "${labels}" ENVIRONMENT "FXR_SOURCE_DIR=${CMAKE_SOURCE_DIR};FXR_BINARY_DIR=${CMAKE_BINARY_DIR}")
+      DISCOVERY_TIMEOUT 60)
+    # Labels and environment are set after discovery, not through PROPERTIES: CMake 3.25's
+    # gtest_discover_tests flattens list values there (LABELS "model;slow" became LABELS model
+    # plus a property named `slow`, and ENVIRONMENT lost its second entry). The discovered tests
+    # are in the list ${target}_TESTS when ctest reads the include file below, which runs after
+    # the discovery's own include (TEST_INCLUDE_FILES keeps the order).
+    set(props ${CMAKE_CURRENT_BINARY_DIR}/${target}_properties.cmake)
+    file(WRITE ${props}
+      "if(DEFINED ${target}_TESTS)\n"
+      "  set_tests_properties(\${${target}_TESTS} PROPERTIES LABELS \"${labels}\"\n"
+      "    ENVIRONMENT \"FXR_SOURCE_DIR=${CMAKE_SOURCE_DIR};FXR_BINARY_DIR=${CMAKE_BINARY_DIR}\")\n"
+      "endif()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${props})
   endforeach()
 endfunction()
