@@ -94,6 +94,7 @@ TEST(RenderOutput, TextureLargerThanTheAddressUnitIsRefusedNamingTheField) {
   EXPECT_EQ(r.exit, 2) << r.err;
   EXPECT_NE(r.err.find("tex_addr.size_bits"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(d + "/out"));
+}
 
 // A NaN / Inf varying (docs/pipeline.md, stage 1): the triangle is drawn, with as many fragments
 // as the same triangle with finite varyings, and stats.json and report.md count it.
