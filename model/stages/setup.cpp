@@ -164,7 +164,9 @@ StageCost SetupStage::cost(const Config& cfg) {
     for (int k = 0; k < 3; ++k) c.add_mult(r.z_frac_bits + 1, r.depth_bits());
     c.adder_bits += 6 * (int64_t)(r.window_int_bits + r.attr_subpixel_bits) + 6 * (int64_t)(2 * r.attr_coord_bits + 2);
   }
-  c.latency = 4;  // products, sums, alignment, bounding box (estimate until rtl/ has the stage)
+  // rtl/fxr_setup.sv: the coverage stages of fxr_setup_edges (products; edge constants, 2A and
+  // the candidate rectangle; outcome, winding and top-left bias), one triangle per clock.
+  c.latency = kSetupEdgeStages;
   c.ii = 1;
   c.ff_bits = c.latency * record_bits<TriangleEquations>(cfg, kMaxVaryings);
   return c;

@@ -110,6 +110,30 @@ struct SetupTriangle {
   }
 };
 
+// The draw state stage 5 reads, as per-draw inputs of the hardware (rtl/fxr_setup.sv; the setup
+// vectors list these fields from here). Widths: viewport / scissor origins signed
+// window_int_bits + 1 (the window range and one more bit, so a viewport may start outside it);
+// viewport sizes unsigned window_int_bits + 1; scissor sizes signed window_int_bits + 2 (a
+// negative size, −1 by default, means "no scissor", as DrawState); cull 2 bits (CullMode);
+// front_ccw 1 bit; interp 1 bit (InterpMode: 1 = affine).
+inline constexpr int kCullModeBits = 2;    // CullMode: None, Back, Front
+inline constexpr int kInterpModeBits = 1;  // InterpMode: Perspective, Affine
+template <class V>
+void visit_setup_state(V& v, const RecordShape& s, DrawState& st) {
+  const int w = s.cfg.raster.window_int_bits;
+  v("viewport_x", st.viewport_x, w + 1, true);
+  v("viewport_y", st.viewport_y, w + 1, true);
+  v("viewport_w", st.viewport_w, w + 1, false);
+  v("viewport_h", st.viewport_h, w + 1, false);
+  v("scissor_x", st.scissor_x, w + 1, true);
+  v("scissor_y", st.scissor_y, w + 1, true);
+  v("scissor_w", st.scissor_w, w + 2, true);
+  v("scissor_h", st.scissor_h, w + 2, true);
+  v("cull", st.cull, kCullModeBits, false);
+  v("front_ccw", st.front_ccw, 1, false);
+  v("interp", st.interp, kInterpModeBits, false);
+}
+
 // ---- coverage: edge functions ------------------------------------------------------------------------
 
 // One edge function on the sample grid: E(X, Y) = a·X + b·Y + c, and its top-left bias.
@@ -316,6 +340,10 @@ struct TriangleEquations {
 bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, bool varyings,
                       TriangleEquations& eq);
 
+// Register stages of the coverage part of rtl/fxr_setup.sv (fxr_setup_edges): coordinate
+// products | edge constants, 2A, candidate rectangle | outcome, winding, top-left bias.
+inline constexpr int kSetupEdgeStages = 3;
+
 class SetupStage {
  public:
   static constexpr const char* kName = "setup";
@@ -341,8 +369,7 @@ class SetupStage {
     return o;
   }
 
-  // Planned RTL: 6 coordinate products for the edge constants and area, the bounding box
-  // compares; per plane 9 products E-coefficient × vertex value.
+  // rtl/fxr_setup.sv: latency and II of the RTL; area: its products and adders.
   static StageCost cost(const Config& cfg);
 
  private:

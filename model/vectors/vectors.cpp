@@ -12,7 +12,9 @@
 #include "model/config/json_input.hpp"
 #include "model/config/validate.hpp"
 #include "model/stages/recip.hpp"
+#include "model/stages/setup.hpp"
 #include "model/stages/texaddr.hpp"
+#include "model/vectors/setup_vectors.hpp"
 
 namespace fxr {
 
@@ -898,6 +900,8 @@ std::vector<VectorUnitInfo> builtin_vector_units() {
       {"texaddr", "fxr_texaddr", "texture address unit (fxr::texaddr): texel indices, border flags, bilinear weights",
        [](const Config& c) { return std::make_unique<TexaddrVectors>(c); },
        [](const Config& c) { return texaddr_cost(c.tex_addr); }},
+      {"setup", "fxr_setup", "triangle setup (SetupStage): edges, top-left bias, 2A, culling, bounding box, planes",
+       [](const Config& c) { return make_setup_vectors(c, false); }, [](const Config& c) { return SetupStage::cost(c); }},
   };
 }
 
