@@ -33,14 +33,14 @@ module fxr_setup_edges #(
   input  logic [3*XB-1:0]       x_i,           // signed, subpixel units
   input  logic [3*XB-1:0]       y_i,
   input  logic [3*ZB-1:0]       z_i,           // unsigned, ZFracBits fraction bits
-  input  logic [WindowIntBits:0]   viewport_x_i,  // signed
-  input  logic [WindowIntBits:0]   viewport_y_i,  // signed
-  input  logic [WindowIntBits:0]   viewport_w_i,  // unsigned
-  input  logic [WindowIntBits:0]   viewport_h_i,  // unsigned
-  input  logic [WindowIntBits:0]   scissor_x_i,   // signed
-  input  logic [WindowIntBits:0]   scissor_y_i,   // signed
-  input  logic [WindowIntBits+1:0] scissor_w_i,   // signed; negative: no scissor
-  input  logic [WindowIntBits+1:0] scissor_h_i,   // signed; negative: no scissor
+  input  logic [WindowIntBits-1:0] viewport_x_i,  // signed
+  input  logic [WindowIntBits-1:0] viewport_y_i,  // signed
+  input  logic [WindowIntBits:0]   viewport_w_i,  // signed
+  input  logic [WindowIntBits:0]   viewport_h_i,  // signed
+  input  logic [WindowIntBits-1:0] scissor_x_i,   // signed
+  input  logic [WindowIntBits-1:0] scissor_y_i,   // signed
+  input  logic [WindowIntBits:0]   scissor_w_i,   // signed; negative: no scissor
+  input  logic [WindowIntBits:0]   scissor_h_i,   // signed; negative: no scissor
   input  logic [1:0]               cull_i,        // cull_e
   input  logic                     front_ccw_i,
   // after three enabled clocks:
@@ -111,11 +111,11 @@ module fxr_setup_edges #(
     sx = RB'($signed(scissor_x_i));
     sy = RB'($signed(scissor_y_i));
     t = '0;
-    scissor = !scissor_w_i[WindowIntBits+1] && !scissor_h_i[WindowIntBits+1];
+    scissor = !scissor_w_i[WindowIntBits] && !scissor_h_i[WindowIntBits];
     rx0_d = vx;
     ry0_d = vy;
-    rx1_d = vx + $signed(RB'(viewport_w_i)) - RB'(1);
-    ry1_d = vy + $signed(RB'(viewport_h_i)) - RB'(1);
+    rx1_d = vx + RB'($signed(viewport_w_i)) - RB'(1);
+    ry1_d = vy + RB'($signed(viewport_h_i)) - RB'(1);
     if (scissor) begin
       if (sx > rx0_d) rx0_d = sx;
       if (sy > ry0_d) ry0_d = sy;

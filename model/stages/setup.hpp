@@ -111,27 +111,26 @@ struct SetupTriangle {
 };
 
 // The draw state stage 5 reads, as per-draw inputs of the hardware (rtl/fxr_setup.sv; the setup
-// vectors list these fields from here). Widths: viewport / scissor origins signed
-// window_int_bits + 1 (the window range and one more bit, so a viewport may start outside it);
-// viewport sizes unsigned window_int_bits + 1; scissor sizes signed window_int_bits + 2 (a
-// negative size, −1 by default, means "no scissor", as DrawState); cull 2 bits (CullMode);
-// front_ccw 1 bit; interp 1 bit (InterpMode: 1 = affine).
-inline constexpr int kCullModeBits = 2;    // CullMode: None, Back, Front
-inline constexpr int kInterpModeBits = 1;  // InterpMode: Perspective, Affine
+// vectors list these fields from here). Widths as the draw state's register block: origins
+// signed window_int_bits pixel indices, sizes signed window_int_bits + 1 (a negative scissor
+// size, −1 by default, means "no scissor"), cull 2 bits (CullMode), front_ccw 1 bit, interp
+// 1 bit (InterpMode: 1 = affine).
 template <class V>
 void visit_setup_state(V& v, const RecordShape& s, DrawState& st) {
   const int w = s.cfg.raster.window_int_bits;
-  v("viewport_x", st.viewport_x, w + 1, true);
-  v("viewport_y", st.viewport_y, w + 1, true);
-  v("viewport_w", st.viewport_w, w + 1, false);
-  v("viewport_h", st.viewport_h, w + 1, false);
-  v("scissor_x", st.scissor_x, w + 1, true);
-  v("scissor_y", st.scissor_y, w + 1, true);
-  v("scissor_w", st.scissor_w, w + 2, true);
-  v("scissor_h", st.scissor_h, w + 2, true);
-  v("cull", st.cull, kCullModeBits, false);
+  constexpr int cull_bits = 2;    // CullMode: None, Back, Front
+  constexpr int interp_bits = 1;  // InterpMode: Perspective, Affine
+  v("viewport_x", st.viewport_x, w, true);
+  v("viewport_y", st.viewport_y, w, true);
+  v("viewport_w", st.viewport_w, w + 1, true);
+  v("viewport_h", st.viewport_h, w + 1, true);
+  v("scissor_x", st.scissor_x, w, true);
+  v("scissor_y", st.scissor_y, w, true);
+  v("scissor_w", st.scissor_w, w + 1, true);
+  v("scissor_h", st.scissor_h, w + 1, true);
+  v("cull", st.cull, cull_bits, false);
   v("front_ccw", st.front_ccw, 1, false);
-  v("interp", st.interp, kInterpModeBits, false);
+  v("interp", st.interp, interp_bits, false);
 }
 
 // ---- coverage: edge functions ------------------------------------------------------------------------

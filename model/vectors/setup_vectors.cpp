@@ -334,8 +334,8 @@ std::vector<VecRow> SetupVectors::directed() const {
     add(tri(lo, lo, hi, hi, lo, hi), st);
     st.viewport_x = -(1 << (wib_ - 1));
     st.viewport_y = -(1 << (wib_ - 1));
-    st.viewport_w = 1 << wib_;
-    st.viewport_h = 1 << wib_;
+    st.viewport_w = (1 << wib_) - 1;  // the largest size: the whole range but its last pixel
+    st.viewport_h = (1 << wib_) - 1;
     add(tri(lo, lo, hi, lo, lo, hi), st);
     add(tri(hi, hi, lo, hi, hi, lo), st);
     add(tri(lo, lo, lo + 5 * S, lo, lo, lo + 5 * S), st);
@@ -345,11 +345,12 @@ std::vector<VecRow> SetupVectors::directed() const {
     st.viewport_w = 100;
     st.viewport_h = 100;
     add(tri(hi - 20 * S, hi - 20 * S, hi, hi - 20 * S, hi, hi), st);
-    st.viewport_x = -(1 << wib_);  // starts outside the window range
-    st.viewport_y = -(1 << wib_);
-    st.viewport_w = (1 << (wib_ + 1)) - 1;
-    st.viewport_h = (1 << (wib_ + 1)) - 1;
+    st.viewport_x = 0;  // runs past the window range
+    st.viewport_y = -5;
+    st.viewport_w = (1 << wib_) - 1;
+    st.viewport_h = (1 << wib_) - 1;
     add(tri(lo, lo, hi, lo, lo, hi), st);
+    add(tri(hi, hi, 0, hi, hi, 0), st);
   }
   // Slivers and a full-viewport pair.
   add(tri(0, 0, 255 * S, 1, 0, 2), base);
@@ -376,8 +377,8 @@ std::vector<VecRow> SetupVectors::directed() const {
     st = base;
     st.viewport_x = -(1 << (wib_ - 1));
     st.viewport_y = -(1 << (wib_ - 1));
-    st.viewport_w = 1 << wib_;
-    st.viewport_h = 1 << wib_;
+    st.viewport_w = (1 << wib_) - 1;
+    st.viewport_h = (1 << wib_) - 1;
     add(tri(-9000 * S, -9000 * S, 9000 * S + 5, -8000 * S, 100 * S, 9000 * S), st);
     add(tri(-100 * S, -100 * S, 100 * S, -100 * S, 0, 20000 * S), st);
   }
@@ -401,12 +402,12 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
     case 4: case 5:
       st.viewport_x = (int)random_in(rng, -half_range, half_range - 1);
       st.viewport_y = (int)random_in(rng, -half_range, half_range - 1);
-      st.viewport_w = (int)random_in(rng, 1, 1ll << random_in(rng, 0, wib_));
-      st.viewport_h = (int)random_in(rng, 1, 1ll << random_in(rng, 0, wib_));
+      st.viewport_w = (int)random_in(rng, 1, (1ll << random_in(rng, 1, wib_)) - 1);
+      st.viewport_h = (int)random_in(rng, 1, (1ll << random_in(rng, 1, wib_)) - 1);
       break;
     case 6:
       st.viewport_x = st.viewport_y = (int)-half_range;
-      st.viewport_w = st.viewport_h = (int)(2 * half_range);
+      st.viewport_w = st.viewport_h = (int)(2 * half_range - 1);
       break;
     default:
       st.viewport_x = (int)random_in(rng, -300, 300);
@@ -415,7 +416,7 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
       st.viewport_h = (int)random_in(rng, 1, 16);
   }
   if ((rng() & 3) == 0) {
-    const int64_t lim = 1ll << wib_;  // the field: signed window_int_bits + 1
+    const int64_t lim = half_range;  // the field: signed window_int_bits
     st.scissor_x = (int)std::clamp<int64_t>(st.viewport_x + random_in(rng, -8, st.viewport_w), -lim, lim - 1);
     st.scissor_y = (int)std::clamp<int64_t>(st.viewport_y + random_in(rng, -8, st.viewport_h), -lim, lim - 1);
     st.scissor_w = (int)random_in(rng, (rng() & 15) == 0 ? -3 : 0, st.viewport_w);
