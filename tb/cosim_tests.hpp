@@ -108,7 +108,7 @@ void expect_corruption_caught(const std::string& unit, const std::string& hex, s
   const int fi = lay.index(field);
   ASSERT_GE(fi, 0);
   ASSERT_LT(vec, f.rows());
-  f.data[vec * lay.size() + (size_t)fi] ^= 1ull << bit;
+  f.data[vec * lay.size() + (size_t)fi] ^= (vec_word)1 << bit;
   const fs::path dir = fs::path(out_dir()) / (unit + "_corrupt");
   fs::create_directories(dir);
   const std::string copy = (dir / fs::path(hex).filename()).string();

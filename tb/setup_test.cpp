@@ -7,4 +7,4 @@
 
 using SetupDefault = fxr::tb::gen::SetupPortsGen<Vfxr_setup>;
 
-FXR_COSIM_TESTS(Setup, SetupDefault, "setup", "e1_c", 3)
+FXR_COSIM_TESTS(Setup, SetupDefault, "setup", "num1_c", 100)  // a bit above 64: the wide ports

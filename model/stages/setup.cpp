@@ -142,31 +142,36 @@ DepthSetup depth_setup(const Config& cfg, const SetupTriangle& tri, const TriSet
 }
 
 StageCost SetupStage::cost(const Config& cfg) {
+  // rtl/fxr_setup.sv at this configuration (docs/pipeline.md, stage 5 "RTL").
   const RasterConfig& r = cfg.raster;
   StageCost c;
   const int cb = coord_bits(r);
-  // Edge constants x_a·y_b − x_b·y_a: 6 coordinate products (the area is E_0(v_0): 2 more).
-  for (int k = 0; k < 8; ++k) c.add_mult(cb, cb);
-  // Planes: per plane 3 vertex values × (a, b, c): 9 products of an edge field by the value.
-  const int planes_interp = kMaxVaryings + 1;  // 1/w and every v/w (sized for the maximum)
-  const int pe = plane_edge_bits(r);  // the planes' edge functions (attribute ones when separate)
-  for (int p = 0; p < planes_interp; ++p)
-    for (int k = 0; k < 9; ++k) c.add_mult(pe, r.interp_block_bits + 1);
-  const int qz = attr_planes(r) ? r.z_frac_bits + 1 : r.z_frac_bits + 1 + r.depth_bits();
-  for (int k = 0; k < 9; ++k) c.add_mult(pe, qz);
-  // Block alignment: 3 shifters per plane; bounding box: 4 compares, scissor 4 more.
-  c.adder_bits = 6 * (int64_t)edge_coef_bits(r) + 8 * (int64_t)r.window_int_bits;
+  // Coverage: the 6 coordinate products of the edge constants (2A is c_0 + c_1 + c_2).
+  for (int k = 0; k < 6; ++k) c.add_mult(cb, cb);
+  // The planes' edge functions (fxr_setup_attr): on the attribute triangle c_0 = x_1·y_2 − x_2·y_1
+  // (vertex 0 is the origin) and the edge values at the anchor a_k·X0 + b_k·Y0.
+  const int W = r.attr_coord_bits;
+  const int ab = std::max(W + 2, edge_coef_bits(r)), cwb = std::max(2 * W + 2, edge_value_bits(r));
   if (attr_planes(r)) {
-    // Attribute triangle (model/stages/attr.hpp): relative coordinates (6 subtractors of
-    // window_int_bits + A bits, the drop to F bits), edge constants and area: 6 + 2 products of
-    // attr_coord_bits; the depth vertex values z·(2^db − 1): 3 products (z_frac_bits + 1) × db.
-    for (int k = 0; k < 8; ++k) c.add_mult(r.attr_coord_bits, r.attr_coord_bits);
-    for (int k = 0; k < 3; ++k) c.add_mult(r.z_frac_bits + 1, r.depth_bits());
-    c.adder_bits += 6 * (int64_t)(r.window_int_bits + r.attr_subpixel_bits) + 6 * (int64_t)(2 * r.attr_coord_bits + 2);
+    for (int k = 0; k < 2; ++k) c.add_mult(W + 1, W + 1);
+    for (int k = 0; k < 6; ++k) c.add_mult(ab, W + 2);
   }
-  // rtl/fxr_setup.sv: the coverage stages of fxr_setup_edges (products; edge constants, 2A and
-  // the candidate rectangle; outcome, winding and top-left bias), one triangle per clock.
-  c.latency = kSetupEdgeStages;
+  // Planes (fxr_setup_plane): a_k·q_k, b_k·q_k, C_k·q_k per plane; 1/w and every v/w (sized for
+  // kMaxVaryings: the RTL instance has kSetupVecVaryings, each more is one more plane) with
+  // block-aligned values (interp_block_bits + 2 signed), depth with z (z_frac_bits + 2 signed).
+  const int qb = r.interp_block_bits + 2, zqb = r.z_frac_bits + 2;
+  for (int p = 0; p < kMaxVaryings + 1; ++p) {
+    for (int k = 0; k < 6; ++k) c.add_mult(ab, qb);
+    for (int k = 0; k < 3; ++k) c.add_mult(cwb, qb);
+  }
+  for (int k = 0; k < 6; ++k) c.add_mult(ab, zqb);
+  for (int k = 0; k < 3; ++k) c.add_mult(cwb, zqb);
+  // Adders: edge coefficients, 2A, the rectangle (16 compares); the attribute triangle's
+  // relative positions and RNE drops; per plane the three-term sums of c, dx, dy.
+  c.adder_bits = 6 * (int64_t)edge_coef_bits(r) + 3 * (int64_t)edge_value_bits(r) + 16 * (int64_t)(r.window_int_bits + 3);
+  if (attr_planes(r)) c.adder_bits += 18 * (int64_t)(r.window_int_bits + r.attr_subpixel_bits + 2);
+  c.adder_bits += (int64_t)(kMaxVaryings + 2) * 3 * 2 * interp_plane_bits(r);
+  c.latency = kSetupEdgeStages + kSetupAttrStages + kSetupPlaneStages;
   c.ii = 1;
   c.ff_bits = c.latency * record_bits<TriangleEquations>(cfg, kMaxVaryings);
   return c;

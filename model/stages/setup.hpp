@@ -339,9 +339,13 @@ struct TriangleEquations {
 bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, bool varyings,
                       TriangleEquations& eq);
 
-// Register stages of the coverage part of rtl/fxr_setup.sv (fxr_setup_edges): coordinate
-// products | edge constants, 2A, candidate rectangle | outcome, winding, top-left bias.
+// Register stages of rtl/fxr_setup.sv. Coverage (fxr_setup_edges): coordinate products | edge
+// constants, 2A, candidate rectangle | outcome, winding, top-left bias. The planes' edge
+// functions (fxr_setup_attr): fraction bits kept | positions, relative | coefficients, 2A', anchor
+// | orientation, edge values at the anchor. Planes (fxr_setup_plane): products | sums.
 inline constexpr int kSetupEdgeStages = 3;
+inline constexpr int kSetupAttrStages = 4;
+inline constexpr int kSetupPlaneStages = 2;
 
 class SetupStage {
  public:

@@ -13,6 +13,12 @@ namespace {
 
 int padded_bits(const VecField& f) { return f.digits * kVecBitsPerDigit; }
 
+// Verilator's C++ port types: up to 64 bits a scalar (CData … QData), wider a VlWide<N> of
+// 32-bit words (EData).
+constexpr int kVerilatorScalarBits = 64;
+constexpr int kVerilatorWordBits = 32;
+int vl_words(int width) { return (width + kVerilatorWordBits - 1) / kVerilatorWordBits; }
+
 // Bits of the output part of a line: outputs follow the inputs, so they occupy the low bits.
 int out_word_bits(const VecLayout& l) {
   int bits = 0;
@@ -90,9 +96,27 @@ void emit_verilator_ports(std::ostream& os, const std::string& unit, const VecLa
         "  static int latency(const fxr::Config& c) { return fxr::vector_unit(\"" << unit << "\").cost(c).latency; }\n"
         "  static int ii(const fxr::Config& c) { return fxr::vector_unit(\"" << unit << "\").cost(c).ii; }\n"
         "  static void drive(Dut& d, const fxr::VecRow& r) {\n";
-  for (int i : l.inputs()) os << "    d." << l[(size_t)i].name << "_i = r[" << i << "];\n";
+  // Ports up to 64 bits are Verilator scalars; wider ones VlWide<N>, 32-bit words, least
+  // significant first (the vector field is masked to its width, so the top word is clean).
+  for (int i : l.inputs()) {
+    const VecField& f = l[(size_t)i];
+    if (f.width <= kVerilatorScalarBits)
+      os << "    d." << f.name << "_i = r[" << i << "];\n";
+    else
+      os << "    for (int w = 0; w < " << vl_words(f.width) << "; ++w) d." << f.name << "_i[w] = (uint32_t)(r[" << i
+         << "] >> (" << kVerilatorWordBits << " * w));\n";
+  }
   os << "  }\n  static void sample(Dut& d, fxr::VecRow& r) {\n";
-  for (int i : l.outputs()) os << "    r[" << i << "] = d." << l[(size_t)i].name << "_o;\n";
+  for (int i : l.outputs()) {
+    const VecField& f = l[(size_t)i];
+    if (f.width <= kVerilatorScalarBits) {
+      os << "    r[" << i << "] = d." << f.name << "_o;\n";
+    } else {
+      os << "    r[" << i << "] = 0;\n";
+      os << "    for (int w = 0; w < " << vl_words(f.width) << "; ++w) r[" << i << "] |= (fxr::vec_word)d." << f.name
+         << "_o[w] << (" << kVerilatorWordBits << " * w);\n";
+    }
+  }
   os << "  }\n};\n\n}  // namespace fxr::tb::gen\n";
 }
 

@@ -25,7 +25,7 @@ void emit_sv_vector_layout(std::ostream& os, const std::string& unit, const VecL
 void emit_sv_vector_package(std::ostream& os, const Config& cfg);
 
 // A self-contained C++ header with fxr::tb::gen::<Unit>PortsGen<Dut>: fields(), drive(), sample().
-// Port widths up to 64 bits (Verilator's scalar port types).
+// Ports up to 64 bits are Verilator scalars, wider ones (up to kVecMaxFieldBits) VlWide<N>.
 void emit_verilator_ports(std::ostream& os, const std::string& unit, const VecLayout& l);
 
 // The package fxr_rec_pkg: one packed struct per stage record of the back end (TriangleEquations

@@ -9,22 +9,11 @@
 #include <vector>
 
 #include "model/stages/setup.hpp"
+#include "model/vectors/record_vectors.hpp"
 
 namespace fxr {
 
 namespace {
-
-using Word = VecRow::value_type;
-
-u128 field_mask(int width) { return width >= 128 ? ~(u128)0 : (((u128)1 << width) - 1); }
-// The low `width` bits of v (two's complement for signed fields).
-Word pack_bits(i128 v, int width) { return (Word)((u128)v & field_mask(width)); }
-// The field's value: sign-extended from bit width − 1 when signed.
-i128 unpack_bits(Word bits, int width, bool is_signed) {
-  u128 x = (u128)bits & field_mask(width);
-  if (is_signed && width < 128 && ((x >> (width - 1)) & 1)) x |= ~field_mask(width);
-  return (i128)x;
-}
 
 // What a field means, for the manifest (by its name without the v0_ / e0_ / num0_ prefixes).
 std::string describe(const std::string& name, int width, bool is_signed) {
@@ -86,31 +75,11 @@ std::string describe(const std::string& name, int width, bool is_signed) {
          (meaning.empty() ? "" : ": " + meaning);
 }
 
-// Record visitors: the field list, and rows <-> record members.
-struct FieldList {
-  VecDir dir;
-  std::vector<VecField>* out;
-  template <class T>
-  void operator()(const std::string& name, T&, int width, bool is_signed) {
-    out->push_back({name, dir, width, is_signed, describe(name, width, is_signed)});
-  }
-};
-struct Packer {
-  VecRow* row;
-  size_t i, end;
-  template <class T>
-  void operator()(const std::string&, T& f, int width, bool) {
-    if (i < end) (*row)[i] = pack_bits(static_cast<i128>(f), width);
-    ++i;
-  }
-};
-struct Unpacker {
-  const VecRow* row;
-  size_t i;
-  template <class T>
-  void operator()(const std::string&, T& f, int width, bool is_signed) {
-    f = static_cast<T>(unpack_bits((*row)[i++], width, is_signed));
-  }
+// The draw state the stage reads as a record (visit_setup_state), for the record packers.
+struct SetupState {
+  DrawState st;
+  template <class V>
+  void visit(V& v, const RecordShape& s) { visit_setup_state(v, s, st); }
 };
 
 // Raw-bit helpers for the generators (platform-independent: no std distributions).
@@ -127,7 +96,7 @@ int64_t random_signed(std::mt19937_64& rng, int bits) {
 
 class SetupVectors : public VectorModel {
  public:
-  SetupVectors(const Config& c, bool planes) : cfg_(c), shape_{cfg_, kSetupVecVaryings}, planes_(planes) {
+  explicit SetupVectors(const Config& c) : cfg_(c), shape_{cfg_, kSetupVecVaryings} {
     const RasterConfig& r = cfg_.raster;
     attr_ = attr_planes(r);
     sp_ = r.subpixel_bits;
@@ -136,24 +105,15 @@ class SetupVectors : public VectorModel {
     sig_rw_ = attr_ ? r.attr_sig_bits : cfg_.recip.out_sig_bits;
     sig_vw_ = attr_ ? r.attr_sig_bits : r.varying_sig_bits;
     std::vector<VecField> f;
-    SetupTriangle t;
-    DrawState st;
-    FieldList in{VecDir::In, &f};
-    t.visit(in, shape_);
-    visit_setup_state(in, shape_, st);
+    append_record_fields<SetupTriangle>(shape_, VecDir::In, f);
+    append_record_fields<SetupState>(shape_, VecDir::In, f);
     n_in_ = f.size();
-    f.push_back({"outcome", VecDir::Out, kSetupOutcomeBits, false, describe("outcome", kSetupOutcomeBits, false)});
-    TriangleEquations eq;
-    FieldList out{VecDir::Out, &f};
-    eq.visit(out, shape_);
-    if (!planes_) {  // edges, 2A, front and the candidate rectangle: up to y1
-      size_t k = n_in_;
-      while (f[k].name != "y1") ++k;
-      f.resize(k + 1);
-    }
+    f.push_back({"outcome", VecDir::Out, kSetupOutcomeBits, false, ""});
+    append_record_fields<TriangleEquations>(shape_, VecDir::Out, f);
     for (size_t k = n_in_; k < f.size(); ++k)
       for (size_t j = 0; j < n_in_; ++j)
         if (f[j].name == f[k].name) f[k].name = "out_" + f[k].name;
+    for (VecField& x : f) x.format = describe(x.name, x.width, x.is_signed);
     lay_ = VecLayout(f);
   }
 
@@ -169,20 +129,16 @@ class SetupVectors : public VectorModel {
 
   void compute(VecRow& r) const override {
     SetupTriangle tri;
-    DrawState st;
-    Unpacker u{&r, 0};
-    tri.visit(u, shape_);
-    visit_setup_state(u, shape_, st);
-    st.num_varyings = kSetupVecVaryings;
-    SetupStage stage(cfg_, st, true);
+    SetupState st;
+    unpack_record(tri, shape_, r, 0);
+    unpack_record(st, shape_, r, record_size<SetupTriangle>());
+    st.st.num_varyings = kSetupVecVaryings;
+    SetupStage stage(cfg_, st.st, true);
     TriangleEquations eq;
     const SetupOutcome o = stage.step(tri, [&eq](const TriangleEquations& e) { eq = e; });
-    r[n_in_] = (Word)o;
+    r[n_in_] = (vec_word)o;
     for (size_t k = n_in_ + 1; k < r.size(); ++k) r[k] = 0;  // not drawn: every other output 0
-    if (o == SetupOutcome::Ok) {
-      Packer p{&r, n_in_ + 1, r.size()};
-      eq.visit(p, shape_);
-    }
+    if (o == SetupOutcome::Ok) pack_record(eq, shape_, r, n_in_ + 1, "setup vectors");
   }
 
   std::vector<VecRow> directed() const override;
@@ -193,11 +149,15 @@ class SetupVectors : public VectorModel {
   // 1/w = (1 + f/8)·2^e_rw (normalised), v/w of varying m = ±(1 + m/4)·2^e_v.
   SetupVertex vertex(int64_t x, int64_t y, int64_t dx = 0, int64_t dy = 0, uint64_t z = 0, int e_rw = 0,
                      int e_v = 0) const;
-  void pack(VecRow& r, const SetupTriangle& t, DrawState st) const {
-    Packer p{&r, 0, n_in_};
-    SetupTriangle tt = t;
-    tt.visit(p, shape_);
-    visit_setup_state(p, shape_, st);
+  template <class R>
+  size_t record_size() const {
+    std::vector<VecField> f;
+    append_record_fields<R>(shape_, VecDir::In, f);
+    return f.size();
+  }
+  void pack(VecRow& r, const SetupTriangle& t, const DrawState& st) const {
+    pack_record(t, shape_, r, 0, "setup vectors");
+    pack_record(SetupState{st}, shape_, r, record_size<SetupTriangle>(), "setup vectors");
   }
   FxFloat norm(bool neg, uint64_t sig, int lead, int bits) const {
     FxFloat f;
@@ -220,7 +180,6 @@ class SetupVectors : public VectorModel {
 
   Config cfg_;
   RecordShape shape_;
-  bool planes_;
   bool attr_ = false;
   int sp_ = 0, wib_ = 0, cb_ = 0, sig_rw_ = 0, sig_vw_ = 0;
   size_t n_in_ = 0;
@@ -520,8 +479,8 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
 
 }  // namespace
 
-std::unique_ptr<VectorModel> make_setup_vectors(const Config& cfg, bool planes) {
-  return std::make_unique<SetupVectors>(cfg, planes);
+std::unique_ptr<VectorModel> make_setup_vectors(const Config& cfg) {
+  return std::make_unique<SetupVectors>(cfg);
 }
 
 }  // namespace fxr

@@ -26,7 +26,6 @@ inline constexpr int kSetupVecVaryings = 2;
 // SetupOutcome (5 values) as an unsigned field.
 inline constexpr int kSetupOutcomeBits = 3;
 
-// planes = false: the outputs stop after the candidate rectangle (edges, 2A, front, x0..y1).
-std::unique_ptr<VectorModel> make_setup_vectors(const Config& cfg, bool planes = true);
+std::unique_ptr<VectorModel> make_setup_vectors(const Config& cfg);
 
 }  // namespace fxr

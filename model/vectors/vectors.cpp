@@ -901,7 +901,7 @@ std::vector<VectorUnitInfo> builtin_vector_units() {
        [](const Config& c) { return std::make_unique<TexaddrVectors>(c); },
        [](const Config& c) { return texaddr_cost(c.tex_addr); }},
       {"setup", "fxr_setup", "triangle setup (SetupStage): edges, top-left bias, 2A, culling, bounding box, planes",
-       [](const Config& c) { return make_setup_vectors(c, false); }, [](const Config& c) { return SetupStage::cost(c); }},
+       [](const Config& c) { return make_setup_vectors(c); }, [](const Config& c) { return SetupStage::cost(c); }},
   };
 }
 
