@@ -140,7 +140,7 @@ class ClipStage {
     if (oc0 & oc1 & oc2) return r.outcome = ClipOutcome::CulledOutside, r;  // all outside one plane
     out_.prim = in.prim;
     if ((oc0 | oc1 | oc2) == 0) {  // trivial accept: all inside every plane, no clipper
-      for (int i = 0; i < 3; ++i) copy_vertex(in.v[i], out_.v[i]);
+      for (int i = 0; i < 3; ++i) copy_clip_vertex(in.v[i], out_.v[i], nv_);
       emit(static_cast<const Out&>(out_));
       return r;
     }
@@ -150,9 +150,9 @@ class ClipStage {
     if (poly.n < 3) return r.outcome = ClipOutcome::ClippedAway, r;  // clip_triangle gives 0 or ≥ 3
     r.outcome = ClipOutcome::Clipped;
     for (int i = 1; i + 1 < poly.n; ++i) {
-      copy_vertex(poly.v[0], out_.v[0]);
-      copy_vertex(poly.v[i], out_.v[1]);
-      copy_vertex(poly.v[i + 1], out_.v[2]);
+      copy_clip_vertex(poly.v[0], out_.v[0], nv_);
+      copy_clip_vertex(poly.v[i], out_.v[1], nv_);
+      copy_clip_vertex(poly.v[i + 1], out_.v[2], nv_);
       emit(static_cast<const Out&>(out_));
     }
     return r;
@@ -163,10 +163,6 @@ class ClipStage {
   static StageCost cost(const Config& cfg);
 
  private:
-  void copy_vertex(const ClipVtx& a, ClipVtx& b) const {  // the active part only
-    for (int c = 0; c < 4; ++c) b.p[c] = a.p[c];
-    for (int k = 0; k < nv_; ++k) b.v[k] = a.v[k];
-  }
   GuardBand gb_;
   ClipWidths cw_;
   int nv_;

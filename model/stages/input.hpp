@@ -20,7 +20,24 @@ namespace fxr {
 struct ClipVtx {
   FxFloat p[4];               // x_c, y_c, z_c, w_c
   FxFloat v[kMaxVaryings];    // v_0 … v_{N−1}
+  // w_c for the attribute positions (docs/pipeline.md, stage 2 "New vertices"): an input
+  // vertex's w_c itself; a new vertex's w_c rounded once to raster.clip_sig_bits like x, y, z,
+  // where p[3] is rounded to recip.in_sig_bits for the reciprocal unit. 0 = not set (then
+  // p[3] serves).
+  FxFloat wa;
 };
+
+// Copies the active part of a vertex (position, attribute w, the first nv varyings); an unset
+// attribute w (an input vertex) becomes the vertex's w_c.
+inline void copy_clip_vertex(const ClipVtx& a, ClipVtx& b, int nv) {
+  for (int c = 0; c < 4; ++c) b.p[c] = a.p[c];
+  b.wa = a.wa.sig ? a.wa : a.p[3];
+  for (int k = 0; k < nv; ++k) b.v[k] = a.v[k];
+}
+
+// Records carry `wa` only where the attribute positions exist (raster.attr_subpixel_bits >
+// subpixel_bits) and only after the clipper: before it, wa is w_c.
+inline bool clip_vertex_has_wa(const Config& c) { return c.raster.attr_subpixel_bits > c.raster.subpixel_bits; }
 
 // Significand bits of a ClipVtx component in a record: float32 inputs carry kF32SigBits, the
 // clipper's new x, y, z and varyings raster.clip_sig_bits and its new w recip.in_sig_bits.
@@ -28,11 +45,14 @@ inline int clip_vertex_sig_bits(const Config& c) {
   return std::max({kF32SigBits, c.raster.clip_sig_bits, c.recip.in_sig_bits});
 }
 
+// with_wa: the record is after the clipper (ClippedTriangle, RecipTriangle) and lists `wa`
+// when the configuration has attribute positions.
 template <class V>
-void visit_clip_vertex(V& v, const std::string& pre, ClipVtx& x, const RecordShape& s) {
+void visit_clip_vertex(V& v, const std::string& pre, ClipVtx& x, const RecordShape& s, bool with_wa = false) {
   static const char* const kPos[4] = {"x", "y", "z", "w"};
   const int sb = clip_vertex_sig_bits(s.cfg);
   for (int c = 0; c < 4; ++c) visit_fx(v, pre + kPos[c], x.p[c], sb, s);
+  if (with_wa && clip_vertex_has_wa(s.cfg)) visit_fx(v, pre + "wa", x.wa, sb, s);
   for (int k = 0; k < s.num_varyings; ++k) visit_fx(v, pre + "var" + std::to_string(k), x.v[k], sb, s);
 }
 
@@ -54,8 +74,8 @@ struct InputTriangle {
 };
 
 // Three exact clip-space vertices of one primitive (only the active varyings are set): the
-// record at the input-conversion → clipper boundary (ExactTriangle) and at the clipper → recip
-// boundary (ClippedTriangle: a triangle inside the clip volume).
+// record at the clipper → recip boundary (ClippedTriangle: a triangle inside the clip volume,
+// with the attribute w of its vertices).
 struct ClipSpaceTriangle {
   uint32_t prim = 0;
   ClipVtx v[3];
@@ -63,12 +83,21 @@ struct ClipSpaceTriangle {
   template <class V>
   void visit(V& v_, const RecordShape& s) {
     v_("prim", prim, kPrimIdBits, false);
-    for (int i = 0; i < 3; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s);
+    for (int i = 0; i < 3; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s, true);
   }
 };
 
-// Stage 1 output: the primitive as exact FxFloats.
-using ExactTriangle = ClipSpaceTriangle;
+// Stage 1 output: the primitive as exact FxFloats (wa = w_c: not a wire of its own).
+struct ExactTriangle : ClipSpaceTriangle {
+  template <class V>
+  void visit(V& v_, const RecordShape& s) {
+    v_("prim", prim, kPrimIdBits, false);
+    for (int i = 0; i < 3; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s, false);
+  }
+  void restore(const RecordShape&) {
+    for (auto& x : v) x.wa = x.p[3];
+  }
+};
 
 enum class ConvertOutcome : uint8_t {
   Emitted,        // (non-finite varyings, if any, replaced: ConvertStage::varyings_replaced())
@@ -119,6 +148,7 @@ class ConvertStage {
     out_.prim = in.prim;
     for (int i = 0; i < 3; ++i) {
       for (int c = 0; c < 4; ++c) out_.v[i].p[c] = convert_input(in.tri.v[i].pos[c], nan, inf);
+      out_.v[i].wa = out_.v[i].p[3];
       for (int k = 0; k < nv_; ++k)  // finite after the replacement: decoded exactly
         out_.v[i].v[k] = decode_f32(varying_input_bits(f32_bits(in.tri.v[i].var[k]), &replaced)).value;
     }

@@ -46,7 +46,8 @@ struct InputLine {
 };
 
 // Two exact clip-space vertices: the record after input conversion (ExactLine) and after the
-// clipper (ClippedLine: a segment inside the clip volume).
+// clipper (ClippedLine: a segment inside the clip volume). Both list the attribute w (an input
+// vertex's is its w_c; not yet split into two records as ExactTriangle / ClippedTriangle are).
 struct ClipSpaceLine {
   uint32_t prim = 0;
   ClipVtx v[2];
@@ -54,7 +55,7 @@ struct ClipSpaceLine {
   template <class V>
   void visit(V& v_, const RecordShape& s) {
     v_("prim", prim, kPrimIdBits, false);
-    for (int i = 0; i < 2; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s);
+    for (int i = 0; i < 2; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s, true);
   }
 };
 using ExactLine = ClipSpaceLine;
@@ -69,7 +70,7 @@ struct RecipLine {
   template <class V>
   void visit(V& v_, const RecordShape& s) {
     v_("prim", prim, kPrimIdBits, false);
-    for (int i = 0; i < 2; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s);
+    for (int i = 0; i < 2; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s, true);
     for (int i = 0; i < 2; ++i) visit_fx(v_, "r" + std::to_string(i), r[i], s.cfg.recip.out_sig_bits, s);
   }
 };
@@ -155,7 +156,7 @@ class LineClipStage {
     if (oc0 & oc1) return r.outcome = ClipOutcome::CulledOutside, r;
     out_.prim = in.prim;
     if ((oc0 | oc1) == 0) {
-      for (int i = 0; i < 2; ++i) copy_vertex(in.v[i], out_.v[i]);
+      for (int i = 0; i < 2; ++i) copy_clip_vertex(in.v[i], out_.v[i], nv_);
       emit(static_cast<const Out&>(out_));
       return r;
     }
@@ -165,7 +166,7 @@ class LineClipStage {
     if (overflow) return r.outcome = ClipOutcome::RejectedOverflow, r;
     if (n == 0) return r.outcome = ClipOutcome::ClippedAway, r;
     r.outcome = ClipOutcome::Clipped;
-    for (int i = 0; i < 2; ++i) copy_vertex(seg[i], out_.v[i]);
+    for (int i = 0; i < 2; ++i) copy_clip_vertex(seg[i], out_.v[i], nv_);
     emit(static_cast<const Out&>(out_));
     return r;
   }
@@ -174,10 +175,6 @@ class LineClipStage {
   static StageCost cost(const Config& cfg) { return ClipStage::cost(cfg); }
 
  private:
-  void copy_vertex(const ClipVtx& a, ClipVtx& b) const {
-    for (int c = 0; c < 4; ++c) b.p[c] = a.p[c];
-    for (int k = 0; k < nv_; ++k) b.v[k] = a.v[k];
-  }
   GuardBand gb_;
   ClipWidths cw_;
   int nv_;
@@ -203,10 +200,7 @@ class LineRecipStage {
       out_.r[i] = rr.value;
     }
     out_.prim = in.prim;
-    for (int i = 0; i < 2; ++i) {
-      for (int c = 0; c < 4; ++c) out_.v[i].p[c] = in.v[i].p[c];
-      for (int k = 0; k < nv_; ++k) out_.v[i].v[k] = in.v[i].v[k];
-    }
+    for (int i = 0; i < 2; ++i) copy_clip_vertex(in.v[i], out_.v[i], nv_);
     emit(static_cast<const Out&>(out_));
     return RecipOutcome::Emitted;
   }

@@ -24,7 +24,7 @@ struct RecipTriangle {
   template <class V>
   void visit(V& v_, const RecordShape& s) {
     v_("prim", prim, kPrimIdBits, false);
-    for (int i = 0; i < 3; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s);
+    for (int i = 0; i < 3; ++i) visit_clip_vertex(v_, field_prefix("v", i), v[i], s, true);
     for (int i = 0; i < 3; ++i) visit_fx(v_, "r" + std::to_string(i), r[i], s.cfg.recip.out_sig_bits, s);
   }
 };
@@ -69,10 +69,7 @@ class RecipStage {
       out_.r[i] = rr.value;
     }
     out_.prim = in.prim;
-    for (int i = 0; i < 3; ++i) {
-      for (int c = 0; c < 4; ++c) out_.v[i].p[c] = in.v[i].p[c];
-      for (int k = 0; k < nv_; ++k) out_.v[i].v[k] = in.v[i].v[k];
-    }
+    for (int i = 0; i < 3; ++i) copy_clip_vertex(in.v[i], out_.v[i], nv_);
     emit(static_cast<const Out&>(out_));
     return RecipOutcome::Emitted;
   }

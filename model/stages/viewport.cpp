@@ -120,9 +120,9 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
   if (range) return ProjectStatus::Range;
   if (attr_separate(rc)) {
     // Separate attribute positions (model/stages/attr.hpp): x_c/w_c, y_c/w_c, z_c/w_c, 1/w_c and
-    // v_k/w_c as exact quotients, each rounded once; r is used for the snap only. w_c is exact
-    // (float32 or the clipper's rounding to recip.in_sig_bits).
-    const FxFloat& w = v.p[3];
+    // v_k/w_c as exact quotients, each rounded once; r is used for the snap only. w_c is the
+    // attribute w: exact (float32) or the clipper's rounding to raster.clip_sig_bits.
+    const FxFloat& w = v.wa.sig ? v.wa : v.p[3];
     out.ax = attr_window(v.p[0], w, st.viewport_w, st.viewport_x, rc, &range);
     out.ay = attr_window(v.p[1], w, st.viewport_h, st.viewport_y, rc, &range);
     if (range) return ProjectStatus::Range;
@@ -171,8 +171,9 @@ StageCost ViewportStage::cost(const Config& cfg) {
     // (attr_sig_bits + 2, with guard and sticky), each a correctly rounded division: counted as
     // a restoring divider's subtractor bits (quotient bits × divisor bits, divisor
     // recip.in_sig_bits), plus the viewport scale products of x and y. The v·(1/w) products
-    // above are then unused for the planes (kept: the snap still uses x·r, y·r).
-    const int wb = cfg.recip.in_sig_bits;
+    // above are then unused for the planes (kept: the snap still uses x·r, y·r). The divisor is
+    // the attribute w (clip_vertex_sig_bits: the clipper's new w at raster.clip_sig_bits).
+    const int wb = sb;
     const int q_xy = r.window_int_bits + r.attr_subpixel_bits + 1, q_z = r.z_frac_bits + 2, q_v = r.attr_sig_bits + 2;
     for (int v = 0; v < 3; ++v) {
       c.adder_bits += (int64_t)(2 * q_xy + q_z + (1 + kMaxVaryings) * q_v) * wb;

@@ -78,7 +78,15 @@ inline mpq_class q_of_float(float f) { return mpq_class((double)f); }  // exact
 struct RVtx {
   mpq_class p[4];
   mpq_class v[kMaxVaryings];
+  // The attribute w (docs/pipeline.md, stage 2): a new vertex's w rounded to clip_sig_bits;
+  // an input vertex's is its w.
+  bool has_wa = false;
+  mpq_class wa;
+  const mpq_class& attr_w() const { return has_wa ? wa : p[3]; }
 };
+
+// A new vertex's attribute w: the intersection of the endpoints' attribute w at parameter t.
+inline void ref_set_attr_w(RVtx& r, const RVtx& a, const RVtx& b, const mpq_class& t, const Config& cfg);
 
 // Guard band from its definition: window x = ±L with L = 2^(window_int_bits−1) − 1 px.
 struct RBand {
@@ -122,6 +130,11 @@ inline mpq_class ref_round_clip(const mpq_class& x, int bits) {
   return r;
 }
 
+inline void ref_set_attr_w(RVtx& r, const RVtx& a, const RVtx& b, const mpq_class& t, const Config& cfg) {
+  r.has_wa = true;
+  r.wa = ref_round_clip(a.attr_w() + t * (b.attr_w() - a.attr_w()), cfg.raster.clip_sig_bits);
+}
+
 // Sutherland–Hodgman on rationals, rounding new components as specified. Returns the polygon.
 inline std::vector<RVtx> ref_clip(const RBand& b, const Config& cfg, int nv, std::vector<RVtx> poly,
                                   int* created) {
@@ -146,6 +159,7 @@ inline std::vector<RVtx> ref_clip(const RBand& b, const Config& cfg, int nv, std
                                   c == 3 ? cfg.recip.in_sig_bits : cfg.raster.clip_sig_bits);
         for (int k = 0; k < nv; ++k)
           r.v[k] = ref_round_clip(poly[i].v[k] + t * (poly[j].v[k] - poly[i].v[k]), cfg.raster.clip_sig_bits);
+        ref_set_attr_w(r, poly[i], poly[j], t, cfg);
         next.push_back(r);
         ++*created;
       }
@@ -207,7 +221,7 @@ inline RSetup ref_project(const Config& cfg, const DrawState& st, const RVtx& v)
   const RasterConfig& rc = cfg.raster;
   if (rc.attr_subpixel_bits > rc.subpixel_bits) {
     // Attribute path (model/stages/attr.hpp): every per-vertex quotient exact, rounded once.
-    const mpq_class w = v.p[3];
+    const mpq_class w = v.attr_w();
     auto awin = [&](const mpq_class& c, long size, long org) -> mpz_class {
       return rne_int(((c / w + 1) * frac(size, 2) + org) * pow2(rc.attr_subpixel_bits));
     };

@@ -92,6 +92,7 @@ RefLine ref_line(const Config& cfg, const DrawState& st, const ClipLine& l) {
       x.p[c] = ref_round_clip(v[0].p[c] + t * (v[1].p[c] - v[0].p[c]),
                               c == 3 ? cfg.recip.in_sig_bits : cfg.raster.clip_sig_bits);
     for (int k = 0; k < nv; ++k) x.v[k] = ref_round_clip(v[0].v[k] + t * (v[1].v[k] - v[0].v[k]), cfg.raster.clip_sig_bits);
+    ref_set_attr_w(x, v[0], v[1], t, cfg);
     v[o] = x;
     ++r.created;
   }
