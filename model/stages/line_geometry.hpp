@@ -98,27 +98,35 @@ class LineConvertStage {
 
   LineConvertStage(const Config&, const DrawState& st) : nv_(st.num_varyings) {}
 
-  // 1 → 0..1: as ConvertStage (NaN before Inf; exact otherwise).
+  // 1 → 0..1: as ConvertStage: a NaN / Inf in a position rejects the segment (NaN before
+  // Inf); a non-finite varying is replaced (varying_input_bits, docs/pipeline.md stage 1).
   template <class Emit>
   ConvertOutcome step(const In& in, Emit&& emit) {
+    replaced_ = false;
     if (nv_ < 0 || nv_ > kMaxVaryings) return ConvertOutcome::RejectedRange;
-    bool nan = false, inf = false;
+    bool nan = false, inf = false, replaced = false;
     out_.prim = in.prim;
     for (int i = 0; i < 2; ++i) {
       for (int c = 0; c < 4; ++c) out_.v[i].p[c] = convert_input(in.line.v[i].pos[c], nan, inf);
-      for (int k = 0; k < nv_; ++k) out_.v[i].v[k] = convert_input(in.line.v[i].var[k], nan, inf);
+      out_.v[i].wa = out_.v[i].p[3];
+      for (int k = 0; k < nv_; ++k)  // finite after the replacement: decoded exactly
+        out_.v[i].v[k] = decode_f32(varying_input_bits(f32_bits(in.line.v[i].var[k]), &replaced)).value;
     }
     if (nan) return ConvertOutcome::RejectedNaN;
     if (inf) return ConvertOutcome::RejectedInf;
+    replaced_ = replaced;
     emit(static_cast<const Out&>(out_));
     return ConvertOutcome::Emitted;
   }
+  // The last emitted segment had a non-finite varying replaced (counted as varying_nonfinite).
+  bool varyings_replaced() const { return replaced_; }
 
   // Two of the triangle converter's three vertex lanes (the same hardware, shared).
   static StageCost cost(const Config& cfg) { return ConvertStage::cost(cfg); }
 
  private:
   int nv_;
+  bool replaced_ = false;
   ExactLine out_;
 };
 

@@ -146,10 +146,11 @@ struct LineStats {
   uint64_t drawn = 0;            // at least one pixel inside viewport ∩ scissor
   uint64_t culled_outside = 0;   // trivially rejected or clipped away entirely
   uint64_t culled_no_pixels = 0; // snapped segment covers no pixel of viewport ∩ scissor (zero length included)
-  uint64_t rejected_nan = 0;     // a NaN in position or varying
-  uint64_t rejected_inf = 0;     // an infinity
+  uint64_t rejected_nan = 0;     // a NaN in a position
+  uint64_t rejected_inf = 0;     // an infinity in a position
   uint64_t rejected_range = 0;   // finite but beyond a format's range (documented)
   uint64_t fragments_generated = 0;  // covered pixels inside viewport ∩ scissor (also counted in RasterStats)
+  uint64_t varying_nonfinite = 0;  // NaN / Inf varyings replaced (docs/pipeline.md stage 1); not a disposition
 
   template <class V>
   void visit(V& v) {
@@ -157,6 +158,7 @@ struct LineStats {
     FXR_STAT(in); FXR_STAT(trivial_accept); FXR_STAT(clipped); FXR_STAT(clip_vertices_created);
     FXR_STAT(drawn); FXR_STAT(culled_outside); FXR_STAT(culled_no_pixels); FXR_STAT(rejected_nan);
     FXR_STAT(rejected_inf); FXR_STAT(rejected_range); FXR_STAT(fragments_generated);
+    FXR_STAT(varying_nonfinite);
 #undef FXR_STAT
   }
   uint64_t accounted() const {

@@ -57,7 +57,9 @@ class LineChain {
       taps_.template out<LineConvertStage>(e);
       ex = &e;
     })) {
-      case ConvertOutcome::Emitted: break;
+      case ConvertOutcome::Emitted:
+        if (convert_.varyings_replaced()) ++s.varying_nonfinite;
+        break;
       case ConvertOutcome::RejectedNaN: ++s.rejected_nan; return;
       case ConvertOutcome::RejectedInf: ++s.rejected_inf; return;
       case ConvertOutcome::RejectedRange: ++s.rejected_range; return;

@@ -13,6 +13,10 @@
 //   statistics — every segment drawn, culled or rejected exactly once.
 #include <gtest/gtest.h>
 
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
 #include <algorithm>
 #include <cstdio>
 #include <random>
@@ -58,6 +62,13 @@ struct RefLine {
   int created = 0;
 };
 
+// The varying rule of docs/pipeline.md stage 1, from its statement: NaN → +0, ±Inf → ±FLT_MAX.
+float ref_varying(float f) {
+  if (std::isnan(f)) return 0.0f;
+  if (std::isinf(f)) return std::copysign(FLT_MAX, f);
+  return f;
+}
+
 // The segment clipper from its specification, on rationals.
 RefLine ref_line(const Config& cfg, const DrawState& st, const ClipLine& l) {
   RefLine r;
@@ -65,7 +76,6 @@ RefLine ref_line(const Config& cfg, const DrawState& st, const ClipLine& l) {
   bool nan = false, inf = false;
   for (int i = 0; i < 2; ++i) {
     for (int c = 0; c < 4; ++c) nan |= is_nan_f(l.v[i].pos[c]), inf |= is_inf_f(l.v[i].pos[c]);
-    for (int k = 0; k < nv; ++k) nan |= is_nan_f(l.v[i].var[k]), inf |= is_inf_f(l.v[i].var[k]);
   }
   if (nan) return r.outcome = RefOutcome::RejectedNaN, r;
   if (inf) return r.outcome = RefOutcome::RejectedInf, r;
@@ -73,7 +83,7 @@ RefLine ref_line(const Config& cfg, const DrawState& st, const ClipLine& l) {
   RVtx v[2];
   for (int i = 0; i < 2; ++i) {
     for (int c = 0; c < 4; ++c) v[i].p[c] = q_of_float(l.v[i].pos[c]);
-    for (int k = 0; k < nv; ++k) v[i].v[k] = q_of_float(l.v[i].var[k]);
+    for (int k = 0; k < nv; ++k) v[i].v[k] = q_of_float(ref_varying(l.v[i].var[k]));
   }
   for (int p = 0; p < 7; ++p)
     if (sgn(ref_dist(b, p, v[0])) < 0 && sgn(ref_dist(b, p, v[1])) < 0) return r.outcome = RefOutcome::Culled, r;
@@ -357,4 +367,36 @@ TEST(LinePath, LinesAreDepthTestedAgainstTriangles) {
   EXPECT_EQ(front_frags, f.stats.lines.fragments_generated / 2);  // 26 pixels each, same columns
   EXPECT_GT(front_frags, 20u);
   EXPECT_EQ(behind_frags, 0u);
+}
+
+// The varying rule of stage 1 on segments: a NaN / ±Inf varying is replaced (NaN → +0, ±Inf →
+// ±FLT_MAX) and the segment is drawn as the reference draws it with those values; a NaN / Inf
+// position still rejects it. Counted in lines.varying_nonfinite.
+TEST(LinePath, NonFiniteVaryingsAreReplacedNotRejected) {
+  DrawState st = georef::state(96, 64, 8, -4, 2);
+  std::vector<ClipLine> lines = random_lines(21, 300, 2);
+  const float kNaN = std::numeric_limits<float>::quiet_NaN(), kInf = std::numeric_limits<float>::infinity();
+  for (size_t i = 0; i < lines.size(); ++i) {
+    lines[i].v[i % 2].var[0] = i % 3 == 0 ? kNaN : (i % 3 == 1 ? kInf : -kInf);
+  }
+  Tally t;
+  check_lines(Config{}, st, lines, t);
+  EXPECT_GT(t.drawn, 50);
+  EXPECT_EQ(t.setup_diffs, 0);
+  EXPECT_EQ(t.pixel_diffs, 0);
+  EXPECT_EQ(t.depth_diffs, 0);
+  EXPECT_EQ(t.over_bound, 0);
+  // Counted once per segment that reached the clipper; a NaN position still rejects.
+  const Config cfg;
+  FrameOutput f;
+  frame_begin(cfg, st, f);
+  NoTaps taps;
+  LineChain<NoTaps> c2(cfg, st, f, nullptr, taps);
+  for (uint32_t i = 0; i < lines.size(); ++i) c2.draw(lines[i], i);
+  EXPECT_EQ(f.stats.lines.varying_nonfinite, lines.size());
+  EXPECT_EQ(f.stats.lines.rejected_nan + f.stats.lines.rejected_inf, 0u);
+  ClipLine bad = lines[0];
+  bad.v[1].pos[0] = kNaN;
+  c2.draw(bad, 0);
+  EXPECT_EQ(f.stats.lines.rejected_nan, 1u);
 }
