@@ -388,7 +388,7 @@ ClipVtx clip_intersect(const ClipWidths& cw, const PlaneEq& pl, const ClipVtx& s
   r.p[3] = component(s.p[3], e.p[3], cw.w_sig_bits);
   // The attribute path's w: the same exact intersection of the endpoints' attribute w, rounded
   // to the position width (where p[3] is rounded to the reciprocal unit's input width).
-  r.wa = component(s.wa.sig ? s.wa : s.p[3], e.wa.sig ? e.wa : e.p[3], cw.pos_sig_bits);
+  r.wa = component(s.attr_w(), e.attr_w(), cw.pos_sig_bits);
   for (int k = 0; k < cw.num_varyings; ++k) r.v[k] = component(s.v[k], e.v[k], cw.pos_sig_bits);
   if (of) *overflow = true;
   return r;

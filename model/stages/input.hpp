@@ -25,13 +25,14 @@ struct ClipVtx {
   // where p[3] is rounded to recip.in_sig_bits for the reciprocal unit. 0 = not set (then
   // p[3] serves).
   FxFloat wa;
+  const FxFloat& attr_w() const { return wa.sig ? wa : p[3]; }
 };
 
 // Copies the active part of a vertex (position, attribute w, the first nv varyings); an unset
 // attribute w (an input vertex) becomes the vertex's w_c.
 inline void copy_clip_vertex(const ClipVtx& a, ClipVtx& b, int nv) {
   for (int c = 0; c < 4; ++c) b.p[c] = a.p[c];
-  b.wa = a.wa.sig ? a.wa : a.p[3];
+  b.wa = a.attr_w();
   for (int k = 0; k < nv; ++k) b.v[k] = a.v[k];
 }
 
@@ -64,12 +65,7 @@ struct InputTriangle {
   template <class V>
   void visit(V& v, const RecordShape& s) {
     v("prim", prim, kPrimIdBits, false);
-    for (int i = 0; i < 3; ++i) {
-      const std::string p = field_prefix("v", i);
-      static const char* const kPos[4] = {"x", "y", "z", "w"};
-      for (int c = 0; c < 4; ++c) v(p + kPos[c], tri.v[i].pos[c], kF32Bits, false);
-      for (int k = 0; k < s.num_varyings; ++k) v(p + "var" + std::to_string(k), tri.v[i].var[k], kF32Bits, false);
-    }
+    for (int i = 0; i < 3; ++i) visit_input_vertex(v, field_prefix("v", i), tri.v[i], s);
   }
 };
 

@@ -36,12 +36,7 @@ struct InputLine {
   template <class V>
   void visit(V& v, const RecordShape& s) {
     v("prim", prim, kPrimIdBits, false);
-    for (int i = 0; i < 2; ++i) {
-      const std::string p = field_prefix("v", i);
-      static const char* const kPos[4] = {"x", "y", "z", "w"};
-      for (int c = 0; c < 4; ++c) v(p + kPos[c], line.v[i].pos[c], kF32Bits, false);
-      for (int k = 0; k < s.num_varyings; ++k) v(p + "var" + std::to_string(k), line.v[i].var[k], kF32Bits, false);
-    }
+    for (int i = 0; i < 2; ++i) visit_input_vertex(v, field_prefix("v", i), line.v[i], s);
   }
 };
 

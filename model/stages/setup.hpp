@@ -117,20 +117,10 @@ struct SetupTriangle {
 // 1 bit (InterpMode: 1 = affine).
 template <class V>
 void visit_setup_state(V& v, const RecordShape& s, DrawState& st) {
-  const int w = s.cfg.raster.window_int_bits;
-  constexpr int cull_bits = 2;    // CullMode: None, Back, Front
-  constexpr int interp_bits = 1;  // InterpMode: Perspective, Affine
-  v("viewport_x", st.viewport_x, w, true);
-  v("viewport_y", st.viewport_y, w, true);
-  v("viewport_w", st.viewport_w, w + 1, true);
-  v("viewport_h", st.viewport_h, w + 1, true);
-  v("scissor_x", st.scissor_x, w, true);
-  v("scissor_y", st.scissor_y, w, true);
-  v("scissor_w", st.scissor_w, w + 1, true);
-  v("scissor_h", st.scissor_h, w + 1, true);
-  v("cull", st.cull, cull_bits, false);
+  st.visit_rects(v, s);  // the register block's fields (DrawState::visit), the subset setup reads
+  v("cull", st.cull, kCullModeBits, false);
   v("front_ccw", st.front_ccw, 1, false);
-  v("interp", st.interp, interp_bits, false);
+  v("interp", st.interp, kInterpModeBits, false);
 }
 
 // ---- coverage: edge functions ------------------------------------------------------------------------

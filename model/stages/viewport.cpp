@@ -122,7 +122,7 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
     // Separate attribute positions (model/stages/attr.hpp): x_c/w_c, y_c/w_c, z_c/w_c, 1/w_c and
     // v_k/w_c as exact quotients, each rounded once; r is used for the snap only. w_c is the
     // attribute w: exact (float32) or the clipper's rounding to raster.clip_sig_bits.
-    const FxFloat& w = v.wa.sig ? v.wa : v.p[3];
+    const FxFloat& w = v.attr_w();
     out.ax = attr_window(v.p[0], w, st.viewport_w, st.viewport_x, rc, &range);
     out.ay = attr_window(v.p[1], w, st.viewport_h, st.viewport_y, rc, &range);
     if (range) return ProjectStatus::Range;

@@ -56,6 +56,15 @@ inline bool depth_compare(DepthFunc f, T incoming, T stored) {
 }
 enum class InterpMode : uint8_t { Perspective, Affine };  // Affine: the wrong image of docs/references.md#seed-000-wrong-image
 
+// The fields of one vertex as the vertex stage emits it (float32 bit patterns): <pre>x, y, z, w
+// and <pre>var<k> for the active varyings. InputTriangle and InputLine list their vertices so.
+template <class V>
+void visit_input_vertex(V& v, const std::string& pre, ClipVertex& x, const RecordShape& s) {
+  static const char* const kPos[4] = {"x", "y", "z", "w"};
+  for (int c = 0; c < 4; ++c) v(pre + kPos[c], x.pos[c], kF32Bits, false);
+  for (int k = 0; k < s.num_varyings; ++k) v(pre + "var" + std::to_string(k), x.var[k], kF32Bits, false);
+}
+
 // Draw state: everything besides the primitives that the unit needs. Window coordinates have
 // y up (row 0 at the bottom), pixel centres at (x + ½, y + ½).
 // Bits of a field holding the values 0 … n − 1 (enum choices) or 0 … n (counts: n + 1 values).
@@ -84,7 +93,7 @@ struct DrawState {
   // signed window_int_bits pixel indices; sizes window_int_bits + 1 bits signed (a size may
   // span the whole signed range, and the scissor's −1 means "the viewport").
   template <class V>
-  void visit(V& v, const RecordShape& s) {
+  void visit_rects(V& v, const RecordShape& s) {
     const int b = s.cfg.raster.window_int_bits;
     v("viewport_x", viewport_x, b, true);
     v("viewport_y", viewport_y, b, true);
@@ -94,6 +103,10 @@ struct DrawState {
     v("scissor_y", scissor_y, b, true);
     v("scissor_w", scissor_w, b + 1, true);
     v("scissor_h", scissor_h, b + 1, true);
+  }
+  template <class V>
+  void visit(V& v, const RecordShape& s) {
+    visit_rects(v, s);
     v("num_varyings", num_varyings, kNumVaryingsBits, false);
     v("front_ccw", front_ccw, 1, false);
     v("cull", cull, kCullModeBits, false);

@@ -50,10 +50,10 @@ constexpr bool kHasContext = std::is_same_v<S, InterpStage>;
 
 // Header columns. In files: txn, n_out[, ctx]; out files: txn, seq, last.
 constexpr size_t kInTxn = 0, kInNOut = 1, kInCtx = 2;
-constexpr size_t kOutTxn = 0, kOutSeq = 1, kOutLast = 2, kOutHeader = 3;
+constexpr size_t kOutTxn = 0, kOutSeq = 1, kOutLast = 2, kOutHeader = kTxnOutHeaderFields;
 template <class S>
 constexpr size_t in_header_size() {
-  return kHasContext<S> ? 3 : 2;
+  return kHasContext<S> ? kTxnCtxHeaderFields : kTxnInHeaderFields;
 }
 
 template <class S>

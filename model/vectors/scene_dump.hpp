@@ -37,6 +37,10 @@ inline constexpr int kSceneVectorFormatVersion = 1;
 // stage is refused with an error).
 inline constexpr int kTxnIdBits = 32;
 inline constexpr int kTxnCountBits = 32;
+// Header fields: in files txn, n_out (+ ctx for interp); out files txn, seq, last (1 bit).
+inline constexpr int kTxnInHeaderFields = 2;
+inline constexpr int kTxnCtxHeaderFields = 3;
+inline constexpr int kTxnOutHeaderFields = 3;
 
 // The stages in chain order (the names are the stages' kName).
 const std::vector<std::string>& scene_dump_stages();

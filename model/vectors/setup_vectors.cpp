@@ -83,14 +83,9 @@ struct SetupState {
 };
 
 // Raw-bit helpers for the generators (platform-independent: no std distributions).
-uint64_t low_bits64(uint64_t x, int n) { return n >= 64 ? x : (x & ((1ull << n) - 1)); }
-// Integer in [lo, hi] (hi − lo < 2^32; modulo bias < 2^−32).
-int64_t random_in(std::mt19937_64& rng, int64_t lo, int64_t hi) {
-  return lo + (int64_t)((rng() >> 32) % (uint64_t)(hi - lo + 1));
-}
 // Signed value with |v| < 2^bits (bits ≤ 62), uniform bit pattern.
 int64_t random_signed(std::mt19937_64& rng, int bits) {
-  const int64_t m = (int64_t)low_bits64(rng(), bits);
+  const int64_t m = (int64_t)(uint64_t)low_bits(rng(), bits);
   return (rng() & 1) ? -m : m;
 }
 
@@ -359,27 +354,27 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
   switch (rng() & 7) {
     case 0: case 1: case 2: case 3: break;  // 256², origin 0
     case 4: case 5:
-      st.viewport_x = (int)random_in(rng, -half_range, half_range - 1);
-      st.viewport_y = (int)random_in(rng, -half_range, half_range - 1);
-      st.viewport_w = (int)random_in(rng, 1, (1ll << random_in(rng, 1, wib_)) - 1);
-      st.viewport_h = (int)random_in(rng, 1, (1ll << random_in(rng, 1, wib_)) - 1);
+      st.viewport_x = (int)vec_random_in(rng, -half_range, half_range - 1);
+      st.viewport_y = (int)vec_random_in(rng, -half_range, half_range - 1);
+      st.viewport_w = (int)vec_random_in(rng, 1, (1ll << vec_random_in(rng, 1, wib_)) - 1);
+      st.viewport_h = (int)vec_random_in(rng, 1, (1ll << vec_random_in(rng, 1, wib_)) - 1);
       break;
     case 6:
       st.viewport_x = st.viewport_y = (int)-half_range;
       st.viewport_w = st.viewport_h = (int)(2 * half_range - 1);
       break;
     default:
-      st.viewport_x = (int)random_in(rng, -300, 300);
-      st.viewport_y = (int)random_in(rng, -300, 300);
-      st.viewport_w = (int)random_in(rng, 1, 16);
-      st.viewport_h = (int)random_in(rng, 1, 16);
+      st.viewport_x = (int)vec_random_in(rng, -300, 300);
+      st.viewport_y = (int)vec_random_in(rng, -300, 300);
+      st.viewport_w = (int)vec_random_in(rng, 1, 16);
+      st.viewport_h = (int)vec_random_in(rng, 1, 16);
   }
   if ((rng() & 3) == 0) {
     const int64_t lim = half_range;  // the field: signed window_int_bits
-    st.scissor_x = (int)std::clamp<int64_t>(st.viewport_x + random_in(rng, -8, st.viewport_w), -lim, lim - 1);
-    st.scissor_y = (int)std::clamp<int64_t>(st.viewport_y + random_in(rng, -8, st.viewport_h), -lim, lim - 1);
-    st.scissor_w = (int)random_in(rng, (rng() & 15) == 0 ? -3 : 0, st.viewport_w);
-    st.scissor_h = (int)random_in(rng, 0, st.viewport_h);
+    st.scissor_x = (int)std::clamp<int64_t>(st.viewport_x + vec_random_in(rng, -8, st.viewport_w), -lim, lim - 1);
+    st.scissor_y = (int)std::clamp<int64_t>(st.viewport_y + vec_random_in(rng, -8, st.viewport_h), -lim, lim - 1);
+    st.scissor_w = (int)vec_random_in(rng, (rng() & 15) == 0 ? -3 : 0, st.viewport_w);
+    st.scissor_h = (int)vec_random_in(rng, 0, st.viewport_h);
   }
   st.cull = (rng() & 1) ? CullMode::None : (rng() & 1) ? CullMode::Back : CullMode::Front;
   st.front_ccw = rng() & 1;
@@ -387,8 +382,8 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
 
   // A point of the viewport (subpixel units), then the vertices around it.
   const int64_t S = 1ll << sp_;
-  const int64_t cx = ((int64_t)st.viewport_x + random_in(rng, 0, st.viewport_w - 1)) * S + (int64_t)low_bits64(rng(), sp_);
-  const int64_t cy = ((int64_t)st.viewport_y + random_in(rng, 0, st.viewport_h - 1)) * S + (int64_t)low_bits64(rng(), sp_);
+  const int64_t cx = ((int64_t)st.viewport_x + vec_random_in(rng, 0, st.viewport_w - 1)) * S + (int64_t)(uint64_t)low_bits(rng(), sp_);
+  const int64_t cy = ((int64_t)st.viewport_y + vec_random_in(rng, 0, st.viewport_h - 1)) * S + (int64_t)(uint64_t)low_bits(rng(), sp_);
   int64_t x[3], y[3];
   const uint64_t size = rng() & 7;
   auto around = [&](int bits) {
@@ -405,28 +400,28 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
     case 5: {  // pixel centres, up to 8 px apart: edges through centres, ties
       const int64_t px = cx >> sp_, py = cy >> sp_;
       for (int k = 0; k < 3; ++k) {
-        x[k] = (px + random_in(rng, -8, 8)) * S + S / 2;
-        y[k] = (py + random_in(rng, -8, 8)) * S + S / 2;
+        x[k] = (px + vec_random_in(rng, -8, 8)) * S + S / 2;
+        y[k] = (py + vec_random_in(rng, -8, 8)) * S + S / 2;
       }
       break;
     }
     case 6: {  // sliver: v2 near the segment v0 → v1
-      const int bits = (int)random_in(rng, sp_, cb_ - 2);
+      const int bits = (int)vec_random_in(rng, sp_, cb_ - 2);
       x[0] = cx, y[0] = cy;
       x[1] = cx + random_signed(rng, bits), y[1] = cy + random_signed(rng, bits);
-      const int64_t t = random_in(rng, 0, 16);
-      x[2] = x[0] + (x[1] - x[0]) * t / 16 + random_in(rng, -2, 2);
-      y[2] = y[0] + (y[1] - y[0]) * t / 16 + random_in(rng, -2, 2);
+      const int64_t t = vec_random_in(rng, 0, 16);
+      x[2] = x[0] + (x[1] - x[0]) * t / 16 + vec_random_in(rng, -2, 2);
+      y[2] = y[0] + (y[1] - y[0]) * t / 16 + vec_random_in(rng, -2, 2);
       break;
     }
     default: {  // degenerate: collinear on a lattice line, or a repeated vertex
       around(sp_ + 5);
       if (rng() & 1) {
-        const int64_t k = random_in(rng, -3, 3);
+        const int64_t k = vec_random_in(rng, -3, 3);
         x[2] = x[0] + k * (x[1] - x[0]);
         y[2] = y[0] + k * (y[1] - y[0]);
       } else {
-        const int a = (int)random_in(rng, 0, 2);
+        const int a = (int)vec_random_in(rng, 0, 2);
         x[(a + 1) % 3] = x[a], y[(a + 1) % 3] = y[a];
       }
     }
@@ -436,7 +431,7 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
   const int d = rc.attr_subpixel_bits - sp_;  // attribute bits below a subpixel (> 0 on the attribute path)
   const uint64_t amode = rng() & 15;
   const uint64_t one_z = 1ull << rc.z_frac_bits;
-  const int rw_base = (int)random_in(rng, -24, 24);
+  const int rw_base = (int)vec_random_in(rng, -24, 24);
   const uint64_t spread_sel = rng() & 15;
   const int rw_spread = spread_sel < 12 ? 3 : spread_sel < 15 ? 20 : 60;
   for (int k = 0; k < 3; ++k) {
@@ -446,8 +441,8 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
     if (attr_) {
       int64_t ox = 0, oy = 0;
       if (amode < 12) {  // as the snap left it: within half a subpixel
-        ox = random_in(rng, -(1ll << (d - 1)), 1ll << (d - 1));
-        oy = random_in(rng, -(1ll << (d - 1)), 1ll << (d - 1));
+        ox = vec_random_in(rng, -(1ll << (d - 1)), 1ll << (d - 1));
+        oy = vec_random_in(rng, -(1ll << (d - 1)), 1ll << (d - 1));
       } else if (amode < 15) {  // a few subpixels away
         ox = random_signed(rng, d + 3);
         oy = random_signed(rng, d + 3);
@@ -459,18 +454,18 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
       v.ax = v.x, v.ay = v.y;
     }
     const uint64_t zsel = rng() & 63;
-    v.z = zsel == 0 ? one_z + 1 + low_bits64(rng(), rc.z_frac_bits - 1)  // z > 1: range
+    v.z = zsel == 0 ? one_z + 1 + (uint64_t)low_bits(rng(), rc.z_frac_bits - 1)  // z > 1: range
           : zsel == 1 ? 0
           : zsel == 2 ? one_z
-          : low_bits64(rng(), rc.z_frac_bits);
+          : (uint64_t)low_bits(rng(), rc.z_frac_bits);
     const uint64_t rsel = rng() & 63;
-    v.rw = norm(rsel == 0, (1ull << (sig_rw_ - 1)) | low_bits64(rng(), sig_rw_ - 1),
-                rw_base + (int)random_in(rng, 0, rw_spread), sig_rw_);
+    v.rw = norm(rsel == 0, (1ull << (sig_rw_ - 1)) | (uint64_t)low_bits(rng(), sig_rw_ - 1),
+                rw_base + (int)vec_random_in(rng, 0, rw_spread), sig_rw_);
     if (rsel == 1) v.rw = FxFloat{};
     for (int m = 0; m < kSetupVecVaryings; ++m) {
       const uint64_t vsel = rng() & 7;
-      v.vw[m] = norm(rng() & 1, (1ull << (sig_vw_ - 1)) | low_bits64(rng(), sig_vw_ - 1),
-                     (int)random_in(rng, -40, 40), sig_vw_);
+      v.vw[m] = norm(rng() & 1, (1ull << (sig_vw_ - 1)) | (uint64_t)low_bits(rng(), sig_vw_ - 1),
+                     (int)vec_random_in(rng, -40, 40), sig_vw_);
       if (vsel == 0) v.vw[m] = FxFloat{};
     }
   }

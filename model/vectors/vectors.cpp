@@ -536,10 +536,6 @@ namespace {
 inline uint64_t bit(int i) { return 1ull << i; }
 // A significand of `bits` bits with its msb set, the rest from rng.
 inline uint64_t random_sig(std::mt19937_64& rng, int bits) { return bit(bits - 1) | (rng() & vec_mask(bits - 1)); }
-// Integer in [lo, hi] (hi − lo < 2^32; the modulo bias is < 2^-32 and documented as such).
-inline int64_t random_in(std::mt19937_64& rng, int64_t lo, int64_t hi) {
-  return lo + (int64_t)((rng() >> 32) % (uint64_t)(hi - lo + 1));
-}
 
 nlohmann::json unit_config_json(const char* unit, const nlohmann::json& params) {
   return {{"version", kConfigFormatVersion}, {unit, params}};
@@ -626,7 +622,7 @@ class DivVectors : public VectorModel {
     if (sel == 2 || sel == 3) {
       const int sh = nb_ - db_;
       const uint64_t n = sh >= 0 ? r[1] << sh : r[1] >> -sh;
-      const int64_t delta = random_in(rng, -8, 8);
+      const int64_t delta = vec_random_in(rng, -8, 8);
       const uint64_t m = (uint64_t)((int64_t)n + delta);
       r[0] = (m >= bit(nb_ - 1) && m <= vec_mask(nb_)) ? m : n;
     }
@@ -716,7 +712,7 @@ class RecipVectors : public VectorModel {
   void random(std::mt19937_64& rng, VecRow& r) const override {
     const uint64_t sel = rng() & 63;
     r[0] = rng() & 1;
-    int e = (int)random_in(rng, emin_, emax_);
+    int e = (int)vec_random_in(rng, emin_, emax_);
     r[2] = random_sig(rng, n_);
     if (sel == 0) r[2] = 0;
     if (sel == 1) e = emin_;
@@ -855,17 +851,17 @@ class TexaddrVectors : public VectorModel {
     for (size_t k : {2, 5}) {
       const uint64_t sel = rng() & 31;
       const bool neg = rng() & 1;
-      int e = (int)random_in(rng, -12, 3) - (n_ - 1);
+      int e = (int)vec_random_in(rng, -12, 3) - (n_ - 1);
       uint64_t sig = random_sig(rng, n_);
       if (sel == 0) sig = 0;
-      if (sel == 1) e = (int)random_in(rng, emin_, emax_);
+      if (sel == 1) e = (int)vec_random_in(rng, emin_, emax_);
       set_coord(r, k, neg, std::max(emin_, std::min(emax_, e)), sig);
     }
     for (size_t k : {8, 9}) {
       const uint64_t sel = rng() & 3;
-      if (sel == 0) r[k] = bit((int)random_in(rng, 0, zb_));
-      else if (sel == 1) r[k] = (uint64_t)random_in(rng, 1, std::min<int64_t>(8, (int64_t)bit(zb_)));
-      else r[k] = (uint64_t)random_in(rng, 1, (int64_t)bit(zb_));
+      if (sel == 0) r[k] = bit((int)vec_random_in(rng, 0, zb_));
+      else if (sel == 1) r[k] = (uint64_t)vec_random_in(rng, 1, std::min<int64_t>(8, (int64_t)bit(zb_)));
+      else r[k] = (uint64_t)vec_random_in(rng, 1, (int64_t)bit(zb_));
     }
   }
 

@@ -86,6 +86,12 @@ vec_word vec_mask(int width);
 inline vec_word vec_pack(i128 v, int width) { return (vec_word)v & vec_mask(width); }
 i128 vec_unpack_signed(vec_word bits, int width);
 
+// Integer in [lo, hi] from one raw mt19937_64 word (hi − lo < 2^32; the modulo bias is < 2^−32):
+// the generators' only range draw, identical on every platform (no std distributions).
+inline int64_t vec_random_in(std::mt19937_64& rng, int64_t lo, int64_t hi) {
+  return lo + (int64_t)((rng() >> 32) % (uint64_t)(hi - lo + 1));
+}
+
 // Hex of a row: every field (the file line), or only the inputs / outputs concatenated the same
 // way (used by mismatch reports: "in=... got=... exp=...").
 std::string vec_hex(const VecLayout& l, const VecRow& r);

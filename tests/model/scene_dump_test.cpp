@@ -53,14 +53,6 @@ struct Rows {
   }
 };
 
-template <class R>
-VecLayout record_layout(const RecordShape& s, size_t header, VecDir dir) {
-  std::vector<VecField> f;
-  for (size_t i = 0; i < header; ++i) f.push_back({"h" + std::to_string(i), dir, 32, false, ""});
-  append_record_fields<R>(s, dir, f);
-  return VecLayout(f);
-}
-
 // Reads DIR/stage.side.hex with the field list of record R after `header` 32-bit header fields
 // (the last header field of an out file is the 1-bit `last`).
 template <class R>
@@ -68,7 +60,9 @@ Rows read_rows(const fs::path& dir, const std::string& stage, const std::string&
                size_t header) {
   std::vector<VecField> f;
   const VecDir d = side == "in" ? VecDir::In : VecDir::Out;
-  for (size_t i = 0; i < header; ++i) f.push_back({"h" + std::to_string(i), d, (side == "out" && i == 2) ? 1 : 32, false, ""});
+  // Header widths from docs/vectors.md: 32-bit ids and counts, the out files' last flag 1 bit.
+  for (size_t i = 0; i < header; ++i)
+    f.push_back({"h" + std::to_string(i), d, (side == "out" && i + 1 == header) ? 1 : kTxnIdBits, false, ""});
   append_record_fields<R>(s, d, f);
   Rows r;
   r.lay = VecLayout(f);
@@ -115,11 +109,11 @@ TEST(SceneDump, DefaultSceneRoundTripsThroughEveryStage) {
   EXPECT_EQ(d.stats.fragments_generated, fo.stats.fragments_generated);
   EXPECT_EQ(d.stats.fragments_depth_pass, fo.stats.fragments_depth_pass);
   const RecordShape shape{sc.config, sc.state.num_varyings};
-  const Rows frag = read_rows<Fragment>(dir, "divide", "out", shape, 3);
+  const Rows frag = read_rows<Fragment>(dir, "divide", "out", shape, kTxnOutHeaderFields);
   ASSERT_EQ(frag.n, fo.fragments.size());
   for (uint64_t i = 0; i < frag.n; ++i) {
     Fragment f{};
-    unpack_record(f, shape, frag.row(i), 3);
+    unpack_record(f, shape, frag.row(i), kTxnOutHeaderFields);
     const Fragment& g = fo.fragments[i];
     bool same = f.x == g.x && f.y == g.y && f.depth == g.depth && f.prim == g.prim;
     for (int k = 0; k < sc.state.num_varyings; ++k)
@@ -133,19 +127,19 @@ TEST(SceneDump, DefaultSceneRoundTripsThroughEveryStage) {
   auto link = [&](auto out_tag, auto in_tag, const std::string& a, const std::string& b, size_t in_header) {
     using RO = typename decltype(out_tag)::type;
     using RI = typename decltype(in_tag)::type;
-    const Rows o = read_rows<RO>(dir, a, "out", shape, 3);
+    const Rows o = read_rows<RO>(dir, a, "out", shape, kTxnOutHeaderFields);
     const Rows i = read_rows<RI>(dir, b, "in", shape, in_header);
     ASSERT_EQ(o.n, i.n) << a << " -> " << b;
-    for (uint64_t k = 0; k < o.n; ++k) ASSERT_TRUE(same_record(o, k, 3, i, k, in_header)) << a << " -> " << b << " row " << k;
+    for (uint64_t k = 0; k < o.n; ++k) ASSERT_TRUE(same_record(o, k, kTxnOutHeaderFields, i, k, in_header)) << a << " -> " << b << " row " << k;
   };
-  link(Tag<ExactTriangle>{}, Tag<ExactTriangle>{}, "convert", "clip", 2);
-  link(Tag<ClippedTriangle>{}, Tag<ClippedTriangle>{}, "clip", "recip", 2);
-  link(Tag<RecipTriangle>{}, Tag<RecipTriangle>{}, "recip", "viewport", 2);
-  link(Tag<SetupTriangle>{}, Tag<SetupTriangle>{}, "viewport", "setup", 2);
-  link(Tag<TriangleEquations>{}, Tag<TriangleEquations>{}, "setup", "traverse", 2);
-  link(Tag<Span>{}, Tag<Span>{}, "traverse", "interp", 3);
-  link(Tag<PlaneSample>{}, Tag<PlaneSample>{}, "interp", "depth", 2);
-  link(Tag<PlaneSample>{}, Tag<PlaneSample>{}, "depth", "divide", 2);
+  link(Tag<ExactTriangle>{}, Tag<ExactTriangle>{}, "convert", "clip", kTxnInHeaderFields);
+  link(Tag<ClippedTriangle>{}, Tag<ClippedTriangle>{}, "clip", "recip", kTxnInHeaderFields);
+  link(Tag<RecipTriangle>{}, Tag<RecipTriangle>{}, "recip", "viewport", kTxnInHeaderFields);
+  link(Tag<SetupTriangle>{}, Tag<SetupTriangle>{}, "viewport", "setup", kTxnInHeaderFields);
+  link(Tag<TriangleEquations>{}, Tag<TriangleEquations>{}, "setup", "traverse", kTxnInHeaderFields);
+  link(Tag<Span>{}, Tag<Span>{}, "traverse", "interp", kTxnCtxHeaderFields);
+  link(Tag<PlaneSample>{}, Tag<PlaneSample>{}, "interp", "depth", kTxnInHeaderFields);
+  link(Tag<PlaneSample>{}, Tag<PlaneSample>{}, "depth", "divide", kTxnInHeaderFields);
   fs::remove_all(dir);
 }
 

@@ -61,7 +61,7 @@ class ToyAdd : public VectorModel {
 
 struct ToyRegistered {
   ToyRegistered() {
-    add_vector_unit({"toy_add", "none", "test unit", [](const Config& c) { return std::make_unique<ToyAdd>(c); }});
+    add_vector_unit({"toy_add", "none", "test unit", [](const Config& c) { return std::make_unique<ToyAdd>(c); }, {}});
   }
 };
 const ToyRegistered toy_registered;
