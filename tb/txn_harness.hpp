@@ -12,6 +12,9 @@
 //   out_last_o  compared with the dump's `last` (the input's final output);
 //   ctx_i       the per-triangle context of interp (the record of setup.out line `ctx`), driven
 //               with the same handshake as in_i.
+// Other ports (draw-state inputs, a memory port) are served by an optional TxnHook: drive() sets
+// the DUT's inputs before each evaluation, observe() sees the settled handshake of the cycle
+// before the clock edge (tb/depth_mem.hpp connects fxr_depth's depth-buffer port this way).
 //
 // The rows of S.in are driven in order with random input gaps; the outputs are taken with random
 // back-pressure and compared, in order, with the rows of S.out: the i-th output must equal row i
@@ -26,6 +29,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <random>
@@ -134,6 +138,15 @@ struct TxnOptions {
   size_t max_print = 20;
 };
 
+// Per-cycle access to the DUT's other ports. reset() is called before each simulation (a failed
+// run is replayed with tracing: the hook starts again from the same state).
+template <class Dut>
+struct TxnHook {
+  std::function<void()> reset;
+  std::function<void(Dut&)> drive;    // before every evaluation of the cycle's inputs (and in reset)
+  std::function<void(Dut&)> observe;  // after the cycle's handshakes settled, before the edge
+};
+
 struct TxnMismatch {
   uint64_t out_row = 0;  // row of S.out (line − 1) the output was compared with
   uint64_t cycle = 0;
@@ -144,6 +157,7 @@ struct TxnMismatch {
 struct TxnResult {
   uint64_t inputs = 0, outputs = 0, errors = 0, cycles = 0;
   uint64_t busy_cycles = 0;  // cycles with an input accepted and its outputs not all out
+  uint64_t first_in_cycle = 0, last_out_cycle = 0;  // first input transfer, last output transfer
   double seconds = 0;
   bool timeout = false, sim_error = false;
   std::map<std::string, uint64_t> classes;
@@ -156,7 +170,7 @@ namespace detail {
 
 template <class Dut>
 TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_file, const TxnOptions& o, bool trace,
-                       uint64_t trace_first, uint64_t trace_last, const std::string& wave) {
+                       uint64_t trace_first, uint64_t trace_last, const std::string& wave, const TxnHook<Dut>* hook) {
   TxnResult res;
   const RecordBinding in_b(v.in.lay, v.in.header), out_b(v.out.lay, v.out.header);
   RecordBinding ctx_b;
@@ -195,13 +209,19 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
     dut->clk_i = 0;
     dut->eval();
   };
+  if (hook && hook->reset) hook->reset();
+  auto hook_drive = [&] {
+    if (hook && hook->drive) hook->drive(*dut);
+  };
   dut->clk_i = 0;
   dut->rst_ni = 0;
   dut->in_valid_i = 0;
   dut->out_ready_i = 0;
+  hook_drive();
   dut->eval();
   for (uint64_t i = 0; i < o.reset_cycles; ++i) tick();
   dut->rst_ni = 1;
+  hook_drive();
   dut->eval();
 
   auto record = [&](TxnMismatch m) {
@@ -232,6 +252,7 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
     }
     dut->in_valid_i = offering;
     dut->out_ready_i = !chance(o.out_stall_pct);
+    hook_drive();
     dut->eval();
     dump(2 * cycle);
     const bool in_fire = offering && dut->in_ready_o;
@@ -272,13 +293,16 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
       ++next_out;
       ++res.outputs;
       last_progress = cycle;
+      res.last_out_cycle = cycle;
     }
     if (in_fire) {
       if (!owed) last_progress = cycle;
+      if (next_in == 0) res.first_in_cycle = cycle;
       ++next_in;
       ++res.inputs;
       offering = false;
     }
+    if (hook && hook->observe) hook->observe(*dut);
     tick();
     if (ctx->gotError()) {
       res.sim_error = true;
@@ -308,8 +332,9 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
 // totals, PASSED / FAILED), writes a summary JSON and, on failure, the FST of the window around
 // the first mismatch. `ctx_file`: the context records (interp: setup.out), or nullptr.
 template <class Dut>
-TxnResult run_txn(const SceneStageVectors& v, const SceneStageFile* ctx_file, const TxnOptions& o) {
-  TxnResult r = detail::txn_simulate<Dut>(v, ctx_file, o, false, 0, 0, "");
+TxnResult run_txn(const SceneStageVectors& v, const SceneStageFile* ctx_file, const TxnOptions& o,
+                  const TxnHook<Dut>* hook = nullptr) {
+  TxnResult r = detail::txn_simulate<Dut>(v, ctx_file, o, false, 0, 0, "", hook);
   const std::string dir = [] {
 #ifdef FXR_TB_OUT_DIR
     std::string d = FXR_TB_OUT_DIR;
@@ -326,7 +351,7 @@ TxnResult run_txn(const SceneStageVectors& v, const SceneStageFile* ctx_file, co
     quiet.print = false;
     r.wave = base + "_first_mismatch.fst";
     detail::txn_simulate<Dut>(v, ctx_file, quiet, true, at > o.wave_before ? at - o.wave_before : 0, at + o.wave_after,
-                              r.wave);
+                              r.wave, hook);
   }
   if (o.print) {
     for (auto& [cls, n] : r.classes) std::printf("  class %-24s %llu\n", cls.c_str(), (unsigned long long)n);
