@@ -22,7 +22,7 @@ struct Opts {
   bool exhaustive = false;
   bool no_recompute = false;
   bool list = false;
-  bool use_default = false, no_bunny = false;
+  bool use_default = false, no_bunny = false, wireframe = false;
   int width = 0, height = 0;
 };
 
@@ -52,16 +52,19 @@ int run_scene(const Opts& o) {
   so.width = o.width;
   so.height = o.height;
   so.no_optional = o.no_bunny;
+  so.wireframe = o.wireframe;
+  if (o.wireframe && !o.use_default)
+    throw fxr::ConfigError("vectors scene: --wireframe selects the default scene's wireframe variant: give it with "
+                           "--default (a scene file gives its own \"lines\" objects or mesh \"wireframe\")");
   fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.args[1], so);
   if (!o.config.empty()) fxr::apply_config_file(sc, o.config);
-  if (!sc.lines.empty())  // a documented discard, never a silent one (docs/lines.md, "The line path")
-    std::cerr << "fxraster vectors scene: note: the scene's " << sc.lines.size()
-              << " line segments are not dumped (the line stages are not in the transaction vectors yet)\n";
-  const fxr::SceneDump d = fxr::dump_scene_vectors(sc.config, sc.state, sc.tris, o.out, sc.name);
+  const fxr::SceneDump d =
+      fxr::dump_scene_vectors(sc.config, sc.state, sc.tris, sc.line_state, sc.lines, o.out, sc.name);
   uint64_t total = 0;
   for (const auto& f : d.files) total += f.rows;
   std::cout << "wrote " << o.out << ": " << d.files.size() << " files, " << total << " transactions ("
-            << sc.tris.size() << " primitives, " << d.stats.fragments_depth_pass
+            << sc.tris.size() << " triangles, " << sc.lines.size() << " line segments, "
+            << d.stats.fragments_depth_pass
             << " fragments) and " << o.out << "/scene.json\n";
   return 0;
 }
@@ -101,13 +104,17 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_flag("--no-recompute", o->no_recompute, "check: validate the format only, do not rerun the model");
   sub.add_flag("--default", o->use_default, "scene: the embedded default scene");
   sub.add_flag("--no-bunny", o->no_bunny, "scene: skip the scene's optional objects");
+  sub.add_flag("--wireframe", o->wireframe,
+               "scene, with --default: the default scene's wireframe variant (the face's edges and the bunny's "
+               "silhouette as line segments, as `render --default --wireframe`)");
   sub.add_option("--width", o->width, "scene: viewport width (overrides the scene's)")->check(CLI::Range(1, 16384));
   sub.add_option("--height", o->height, "scene: viewport height (overrides the scene's)")->check(CLI::Range(1, 16384));
   sub.footer(
       "Directed corner cases come first, then --count random cases or the --exhaustive sweep.\n"
       "Every line is one hex word ($readmemh); the manifest names the fields (docs/vectors.md).\n"
       "`vectors scene` writes OUT/<stage>.in.hex and OUT/<stage>.out.hex for every stage of the\n"
-      "unit (transactions: txn / n_out / seq / last) and OUT/scene.json; `vectors check OUT`\n"
+      "unit, the line path's included (transactions: txn / n_out / seq / last) and OUT/scene.json;\n"
+      "`vectors check OUT`\n"
       "re-reads the dump and re-steps every stage against it.");
   return [o]() {
     if (o->list) {

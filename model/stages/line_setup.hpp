@@ -26,6 +26,8 @@
 #include <vector>
 
 #include "model/config/config.hpp"
+#include "model/stages/depth.hpp"
+#include "model/stages/divide.hpp"
 #include "model/stages/interp.hpp"
 #include "model/stages/line.hpp"
 #include "model/stages/line_geometry.hpp"
@@ -101,6 +103,12 @@ struct LineEquations {
       v(p + "_1", vq[m][1], bb, true);
       v(p + "_exp", num_exp[m], eb, true);
     }
+  }
+  // The members that are configuration constants, not wires (model/vectors/record_vectors.hpp):
+  // F is line_param_frac_bits of the configuration, n the number of varyings.
+  void restore(const RecordShape& s) {
+    F = line_param_frac_bits(s.cfg.raster);
+    n = s.num_varyings;
   }
 };
 
@@ -240,6 +248,23 @@ class LineInterpStage {
   int nv_;
   i128 max_code_;
   PlaneSample s_;
+};
+
+// ---- stages 8L, 9L: the depth test and the divider of the line path ------------------------------
+
+// The triangles' depth stage and divider (the same hardware), named apart because segments are
+// drawn with their own draw state (a scene's line_state: depth function, test, write): the
+// transaction vectors (model/vectors/scene_dump.hpp) dump and re-step the line samples in files of
+// their own, line_depth.* and line_divide.*, the depth test on the buffer the triangles left.
+class LineDepthStage : public DepthStage {
+ public:
+  static constexpr const char* kName = "line_depth";
+  using DepthStage::DepthStage;
+};
+class LineDivideStage : public DivideStage {
+ public:
+  static constexpr const char* kName = "line_divide";
+  using DivideStage::DivideStage;
 };
 
 }  // namespace fxr

@@ -4,9 +4,12 @@
 //
 //   InputLine → line_convert → ExactLine → line_clip → ClippedLine (0..1) → line_recip → RecipLine
 //   → line_viewport → SetupLine → line_setup → LineEquations → line → LineFragment (n)
-//   → line_interp → PlaneSample → depth → PlaneSample (0..1) → divide → Fragment → FragmentSink
+//   → line_interp → PlaneSample → line_depth → PlaneSample (0..1) → line_divide → Fragment
+//   → FragmentSink
 //
-// The depth stage (the frame's depth buffer) and the divider are the triangles' own stages.
+// The depth stage (the frame's depth buffer) and the divider are the triangles' own stages
+// (LineDepthStage, LineDivideStage: the same classes under the names of the line path's taps,
+// since segments have their own draw state).
 #pragma once
 
 #include <cstdint>
@@ -114,13 +117,13 @@ class LineChain {
         taps_.template in<LineInterpStage>(lf);
         interp_.step(eq, lf, [&](const PlaneSample& ps) {
           taps_.template out<LineInterpStage>(ps);
-          taps_.template in<DepthStage>(ps);
+          taps_.template in<LineDepthStage>(ps);
           const bool pass = depth_.step(ps, [&](const PlaneSample& p) {
-            taps_.template out<DepthStage>(p);
+            taps_.template out<LineDepthStage>(p);
             if (!sink_) return;
-            taps_.template in<DivideStage>(p);
+            taps_.template in<LineDivideStage>(p);
             divide_.step(p, [&](const Fragment& fr) {
-              taps_.template out<DivideStage>(fr);
+              taps_.template out<LineDivideStage>(fr);
               sink_->emit(fr);
             });
           });
@@ -150,8 +153,8 @@ class LineChain {
   LineSetupStage setup_;
   LineTraverseStage traverse_;
   LineInterpStage interp_;
-  DepthStage depth_;
-  DivideStage divide_;
+  LineDepthStage depth_;
+  LineDivideStage divide_;
   InputLine in_;
 };
 

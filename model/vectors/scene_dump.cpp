@@ -13,6 +13,7 @@
 #include "model/config/validate.hpp"
 #include "model/unit/backend.hpp"
 #include "model/unit/chain.hpp"
+#include "model/unit/line_chain.hpp"
 #include "model/vectors/record_vectors.hpp"
 #include "model/vectors/vectors.hpp"
 
@@ -23,9 +24,11 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// The stages in chain order.
+// The stages in chain order: the triangles' chain, then the line path's (drawn after the triangles
+// into the same depth buffer, with the line draw state).
 using Stages = std::tuple<ConvertStage, ClipStage, RecipStage, ViewportStage, SetupStage, TraverseStage, InterpStage,
-                          DepthStage, DivideStage>;
+                          DepthStage, DivideStage, LineConvertStage, LineClipStage, LineRecipStage, LineViewportStage,
+                          LineSetupStage, LineTraverseStage, LineInterpStage, LineDepthStage, LineDivideStage>;
 constexpr size_t kNumStages = std::tuple_size_v<Stages>;
 
 template <class S, size_t I = 0>
@@ -45,8 +48,18 @@ void for_each_stage(F&& f) {
   for_each_stage_impl(f, std::make_index_sequence<kNumStages>{});
 }
 
+// Stages with a per-primitive context (a `ctx` column): the interpolators latch the equations the
+// setup stage of their path emitted (ContextOf<S>: that setup stage).
 template <class S>
-constexpr bool kHasContext = std::is_same_v<S, InterpStage>;
+constexpr bool kHasContext = std::is_same_v<S, InterpStage> || std::is_same_v<S, LineInterpStage>;
+template <class S>
+using ContextOf = std::conditional_t<std::is_same_v<S, LineInterpStage>, LineSetupStage, SetupStage>;
+// Stages of the line path: constructed with the line draw state.
+template <class S>
+constexpr bool kIsLineStage = stage_index<S>() >= stage_index<LineConvertStage>();
+// Stages holding the frame's depth buffer.
+template <class S>
+constexpr bool kIsDepth = std::is_same_v<S, DepthStage> || std::is_same_v<S, LineDepthStage>;
 
 // Header columns. In files: txn, n_out[, ctx]; out files: txn, seq, last.
 constexpr size_t kInTxn = 0, kInNOut = 1, kInCtx = 2;
@@ -63,7 +76,8 @@ VecLayout in_layout(const RecordShape& s) {
       {"n_out", VecDir::In, kTxnCountBits, false, "number of records the stage emits for this input (0: none)"}};
   if (kHasContext<S>)
     f.push_back({"ctx", VecDir::In, kTxnIdBits, false,
-                 "line (from 0) of setup.out holding this span's triangle equations (the latched context)"});
+                 std::string("line (from 0) of ") + ContextOf<S>::kName +
+                     ".out holding this input's primitive equations (the latched context)"});
   append_record_fields<typename S::In>(s, VecDir::In, f);
   return VecLayout(f);
 }
@@ -166,7 +180,7 @@ class DumpTaps {
     w.flush_in();
     w.check_id(w.next_txn, kTxnIdBits, "inputs");
     w.in_row[kInTxn] = w.next_txn++;
-    if constexpr (kHasContext<S>) w.in_row[kInCtx] = w_[stage_index<SetupStage>()].outs_total - 1;
+    if constexpr (kHasContext<S>) w.in_row[kInCtx] = w_[stage_index<ContextOf<S>>()].outs_total - 1;
     pack_record(r, shape_, w.in_row, in_header_size<S>(), w.in_where);
     w.n_out = 0;
     w.in_pending = true;
@@ -208,7 +222,8 @@ class DumpTaps {
                        side ? "txn: the S.in transaction this output came from; seq: its index among that "
                               "input's outputs; last: 1 on the final one (docs/vectors.md)"
                             : "txn: index of the input in stream order; n_out: outputs emitted for it (0..n)"
-                              "; ctx (interp): line of setup.out with the triangle's equations"}};
+                              "; ctx (interp, line_interp): line of setup.out / line_setup.out with the "
+                              "primitive's equations"}};
         const uint64_t rows = vw.count();
         vw.finish(m, extra);
         files.push_back({w.stage, sn, file_name(w.stage, sn), rows, (side ? w.out_lay : w.in_lay).word_bits()});
@@ -249,8 +264,17 @@ const std::vector<std::string>& scene_dump_stages() {
 }
 
 SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
-                             const std::string& dir_arg, const std::string& scene_name) {
+                             const std::string& dir, const std::string& scene_name) {
+  return dump_scene_vectors(cfg, st, tris, st, {}, dir, scene_name);
+}
+
+SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
+                             const DrawState& line_st, const std::vector<ClipLine>& lines, const std::string& dir_arg,
+                             const std::string& scene_name) {
   validate(cfg, "configuration");
+  if (line_st.num_varyings != st.num_varyings)  // one record shape for every file of the dump
+    throw ConfigError("scene dump: the line draw state has " + std::to_string(line_st.num_varyings) +
+                      " varyings, the triangles' " + std::to_string(st.num_varyings) + " (they must agree)");
   fs::path dir = fs::path(dir_arg).lexically_normal();
   if (!dir.has_filename()) dir = dir.parent_path();
   std::error_code ec;
@@ -270,7 +294,7 @@ SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::
     FrameOutput f;
     DiscardFragments sink;
     DumpTaps taps(cfg, st, tmp.string());
-    run_raster_unit_to(cfg, st, tris, f, &sink, taps);
+    run_raster_unit_to(cfg, st, tris, line_st, lines, f, &sink, taps);
     out.files = taps.finish(cfg, scene_name);
     out.stats = f.stats;
     json j;
@@ -280,8 +304,10 @@ SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::
     j["generator_version"] = kVectorGeneratorVersion;
     j["scene"] = scene_name;
     j["primitives"] = (uint64_t)tris.size();
+    j["line_segments"] = (uint64_t)lines.size();
     j["config"] = config_to_json(cfg);
     j["draw_state"] = draw_state_to_json(cfg, st);
+    j["line_draw_state"] = draw_state_to_json(cfg, line_st);
     json files = json::array();
     for (const auto& fl : out.files)
       files.push_back({{"stage", fl.stage}, {"side", fl.side}, {"hex_file", fl.hex}, {"count", fl.rows},
@@ -293,6 +319,10 @@ SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::
       void operator()(const char* n, uint64_t v) { (*j)[n] = v; }
     } sv{&stats};
     out.stats.visit(sv);
+    json line_stats = json::object();
+    StatsToJson lv{&line_stats};
+    out.stats.lines.visit(lv);
+    stats["lines"] = line_stats;  // the line path's counters (LineStats), also when there are no segments
     j["stats"] = stats;
     std::ofstream o(tmp / "scene.json", std::ios::binary);
     o << j.dump(2) << "\n";
@@ -399,7 +429,7 @@ namespace {
 struct SceneManifest {
   json j;
   Config cfg;
-  DrawState st;
+  DrawState st, line_st;
 };
 SceneManifest read_scene_manifest(const std::string& dir) {
   const std::string sp = dir + "/scene.json";
@@ -412,13 +442,17 @@ SceneManifest read_scene_manifest(const std::string& dir) {
     throw ConfigError(sp + ": field 'format_version' is missing or not supported");
   if (!j.contains("config")) throw ConfigError(sp + ": field 'config' is missing");
   const Config cfg = config_from_json(j.at("config"), sp + ": config");
-  DrawState st;
-  {
-    DrawStateFromJson v{j.contains("draw_state") ? &j.at("draw_state") : nullptr, sp + ": draw_state"};
-    if (!v.j) throw ConfigError(sp + ": field 'draw_state' is missing");
+  auto read_state = [&](const char* key) {
+    DrawState st;
+    DrawStateFromJson v{j.contains(key) ? &j.at(key) : nullptr, sp + ": " + key};
+    if (!v.j) throw ConfigError(sp + ": field '" + key + "' is missing");
     st.visit(v, RecordShape{cfg, 0});
-  }
-  return {j, cfg, st};
+    return st;
+  };
+  const DrawState st = read_state("draw_state"), line_st = read_state("line_draw_state");
+  if (line_st.num_varyings != st.num_varyings)
+    throw ConfigError(sp + ": field 'line_draw_state': num_varyings differs from draw_state's");
+  return {j, cfg, st, line_st};
 }
 
 }  // namespace
@@ -437,7 +471,7 @@ SceneStageVectors load_scene_stage(const std::string& dir, const std::string& st
     r->in = SceneStageFile{in.path, in.lay, in_header_size<S>(), in.rows, std::move(in.data)};
     r->out = SceneStageFile{out.path, out.lay, kOutHeader, out.rows, std::move(out.data)};
   });
-  if (!r) throw ConfigError(dir + ": no stage named '" + stage + "' (the stages: convert … divide)");
+  if (!r) throw ConfigError(dir + ": no stage named '" + stage + "' (the stages: convert … divide, line_convert … line_divide)");
   return std::move(*r);
 }
 
@@ -445,23 +479,23 @@ RestepReport restep_scene_vectors(const std::string& dir, size_t max_report) {
   const SceneManifest m = read_scene_manifest(dir);
   const json& j = m.j;
   const Config& cfg = m.cfg;
-  const DrawState& st = m.st;
-  const RecordShape shape{cfg, st.num_varyings};
+  const RecordShape shape{cfg, m.st.num_varyings};
   RestepReport rep;
   FrameOutput frame;
-  frame_begin(cfg, st, frame);  // the depth stage's buffer, cleared
-  std::optional<LoadedFile> setup_out;  // the interpolators' contexts
+  frame_begin(cfg, m.st, frame);  // the depth stages' buffer, cleared (the triangles', then the lines')
+  std::optional<LoadedFile> setup_out, line_setup_out;  // the interpolators' contexts
 
   for_each_stage([&](auto ic) {
     using S = std::tuple_element_t<decltype(ic)::value, Stages>;
     const std::string name = S::kName;
+    const DrawState& st = kIsLineStage<S> ? m.line_st : m.st;
     const LoadedFile in = load_file(dir, name, "in", in_layout<S>(shape), j.at("config"));
     LoadedFile out = load_file(dir, name, "out", out_layout<S>(shape), j.at("config"));
     check_headers(in, out);
     RestepStage rs{name, in.rows, out.rows, 0};
 
     std::optional<S> stage;
-    if constexpr (std::is_same_v<S, DepthStage>)
+    if constexpr (kIsDepth<S>)
       stage.emplace(cfg, st, DepthBufferView{frame.depth.data(), frame.width, st.viewport_x, st.viewport_y});
     else stage.emplace(cfg, st);
 
@@ -469,7 +503,8 @@ RestepReport restep_scene_vectors(const std::string& dir, size_t max_report) {
     VecRow row, got(out.lay.size());
     std::vector<VecRow> outs;
     uint64_t o = 0;
-    TriangleEquations ctx{};
+    [[maybe_unused]] std::conditional_t<kHasContext<S>, typename ContextOf<S>::Out, char> ctx{};
+    [[maybe_unused]] const std::optional<LoadedFile>& ctx_file = std::is_same_v<ContextOf<S>, LineSetupStage> ? line_setup_out : setup_out;
     uint64_t ctx_id = UINT64_MAX;
     const std::string where = "restep " + name;
     for (uint64_t i = 0; i < in.rows; ++i) {
@@ -486,11 +521,12 @@ RestepReport restep_scene_vectors(const std::string& dir, size_t max_report) {
       };
       if constexpr (kHasContext<S>) {
         const uint64_t c = (uint64_t)row[kInCtx];
-        if (!setup_out || c >= setup_out->rows)
-          throw ConfigError(in.path + ":" + std::to_string(i + 1) + ": field 'ctx': no such line in setup.out");
+        if (!ctx_file || c >= ctx_file->rows)
+          throw ConfigError(in.path + ":" + std::to_string(i + 1) + ": field 'ctx': no such line in " +
+                            ContextOf<S>::kName + ".out");
         if (c != ctx_id) {
-          ctx = TriangleEquations{};
-          unpack_record(ctx, shape, setup_out->row(c), kOutHeader);
+          ctx = typename ContextOf<S>::Out{};
+          unpack_record(ctx, shape, ctx_file->row(c), kOutHeader);
           ctx_id = c;
         }
         stage->step(ctx, rec, emit);
@@ -517,6 +553,8 @@ RestepReport restep_scene_vectors(const std::string& dir, size_t max_report) {
     rep.stages.push_back(rs);
     if constexpr (std::is_same_v<S, SetupStage>) setup_out = std::move(out);
     if constexpr (std::is_same_v<S, InterpStage>) setup_out.reset();
+    if constexpr (std::is_same_v<S, LineSetupStage>) line_setup_out = std::move(out);
+    if constexpr (std::is_same_v<S, LineInterpStage>) line_setup_out.reset();
   });
   return rep;
 }

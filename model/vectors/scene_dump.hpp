@@ -3,7 +3,9 @@
 // stage by stage (docs/vectors.md, "Transaction vectors").
 //
 // For every stage S of the chain (convert, clip, recip, viewport, setup, traverse, interp, depth,
-// divide) two vector files in the one-word-per-line hex format of model/vectors/vectors.hpp:
+// divide, then the line path's line_convert, line_clip, line_recip, line_viewport, line_setup,
+// line, line_interp, line_depth, line_divide) two vector files in the one-word-per-line hex
+// format of model/vectors/vectors.hpp:
 //   S.in.hex   one line per record S received:  txn, n_out[, ctx], then the In record's fields
 //   S.out.hex  one line per record S emitted:   txn, seq, last, then the Out record's fields
 // txn numbers S's inputs from 0 in stream order; an output carries the txn of the input it came
@@ -11,11 +13,15 @@
 // number of outputs of the input (0 when the stage emitted nothing: a rejected, culled or
 // depth-failed record). So 1 → 0..n stages (clipper, traversal, interpolators) need no
 // special case: a testbench drives S.in rows and expects, per txn, exactly n_out S.out rows.
-// ctx (interp only) is the line (from 0) of setup.out holding the triangle's equations, the
-// per-triangle context the interpolators latch. The field lists come from the records' visit()
-// (model/vectors/record_vectors.hpp): nothing is hand-written, and a value that does not fit its
-// declared width stops the dump with an error naming the stage and field.
-// Beside them, scene.json: the configuration, the draw state (the DrawState record), the files
+// ctx (interp and line_interp only) is the line (from 0) of setup.out (line_setup.out) holding
+// the primitive's equations, the per-primitive context the interpolators latch. The field lists
+// come from the records' visit() (model/vectors/record_vectors.hpp): nothing is hand-written, and
+// a value that does not fit its declared width stops the dump with an error naming the stage and
+// field. Line segments are drawn after the triangles with their own draw state (depth function,
+// test, write), so their depth test and divider have files of their own (line_depth,
+// line_divide), re-stepped on the depth buffer the triangles' depth stage left.
+// Beside them, scene.json: the configuration, the draw state (the DrawState record), the line
+// draw state, the files
 // with their counts, and the unit's statistics.
 #pragma once
 
@@ -32,12 +38,14 @@ namespace fxr {
 
 // scene.json "format" / "format_version": bumped when the transaction layout rules change.
 inline constexpr const char* kSceneVectorFormatName = "fxraster-scene-vectors";
-inline constexpr int kSceneVectorFormatVersion = 1;
+// Version 2: the line path's stages (line_convert … line_divide) and scene.json's line_segments
+// and line_draw_state.
+inline constexpr int kSceneVectorFormatVersion = 2;
 // Transaction header fields: ids and counts are unsigned 32 bits (a dump with more records per
 // stage is refused with an error).
 inline constexpr int kTxnIdBits = 32;
 inline constexpr int kTxnCountBits = 32;
-// Header fields: in files txn, n_out (+ ctx for interp); out files txn, seq, last (1 bit).
+// Header fields: in files txn, n_out (+ ctx for interp, line_interp); out files txn, seq, last (1 bit).
 inline constexpr int kTxnInHeaderFields = 2;
 inline constexpr int kTxnCtxHeaderFields = 3;
 inline constexpr int kTxnOutHeaderFields = 3;
@@ -64,6 +72,13 @@ struct SceneDump {
 // byte-identical files. Throws ConfigError.
 SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
                              const std::string& dir, const std::string& scene_name);
+// The same with line segments: the triangles, then `lines` through the line path with `line_st`
+// (run_raster_unit_to of model/unit/line_chain.hpp), segment k primitive tris.size() + k. The
+// line stages' files are written (empty) when there are no segments. line_st must have st's
+// number of varyings (one record shape); otherwise ConfigError.
+SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
+                             const DrawState& line_st, const std::vector<ClipLine>& lines, const std::string& dir,
+                             const std::string& scene_name);
 
 // Re-reading and re-stepping a dump: every file is read and validated (manifest format, layout
 // equal to the records' layout at the dump's configuration, hex lines, transaction ids and
