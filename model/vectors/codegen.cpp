@@ -3,6 +3,7 @@
 
 #include "model/config/param.hpp"
 #include "model/stages/interp.hpp"
+#include "model/stages/line_setup.hpp"
 #include "model/stages/setup.hpp"
 #include "model/stages/traverse.hpp"
 #include "model/vectors/record_vectors.hpp"
@@ -151,6 +152,8 @@ void emit_sv_record_package(std::ostream& os, const Config& cfg, int num_varying
   emit_record_struct<TriangleEquations>(os, "triangle_equations", s);
   emit_record_struct<Span>(os, "span", s);
   emit_record_struct<PlaneSample>(os, "plane_sample", s);
+  emit_record_struct<LineEquations>(os, "line_equations", s);
+  emit_record_struct<LineFragment>(os, "line_fragment", s);
   os << "endpackage\n";
 }
 
