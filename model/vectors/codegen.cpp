@@ -149,6 +149,7 @@ void emit_sv_record_package(std::ostream& os, const Config& cfg, int num_varying
         "package fxr_rec_pkg;\n"
         "  /* verilator lint_off UNUSEDPARAM */  // a unit uses the records it has ports of\n";
   os << "  localparam int NumVaryings = " << num_varyings << ";\n";
+  emit_record_struct<SetupTriangle>(os, "setup_triangle", s);
   emit_record_struct<TriangleEquations>(os, "triangle_equations", s);
   emit_record_struct<Span>(os, "span", s);
   emit_record_struct<PlaneSample>(os, "plane_sample", s);

@@ -896,7 +896,7 @@ std::vector<VectorUnitInfo> builtin_vector_units() {
       {"texaddr", "fxr_texaddr", "texture address unit (fxr::texaddr): texel indices, border flags, bilinear weights",
        [](const Config& c) { return std::make_unique<TexaddrVectors>(c); },
        [](const Config& c) { return texaddr_cost(c.tex_addr); }},
-      {"setup", "fxr_setup", "triangle setup (SetupStage): edges, top-left bias, 2A, culling, bounding box, planes",
+      {"setup", "fxr_setup_fields", "triangle setup (SetupStage): edges, top-left bias, 2A, culling, bounding box, planes",
        [](const Config& c) { return make_setup_vectors(c); }, [](const Config& c) { return SetupStage::cost(c); }},
   };
 }

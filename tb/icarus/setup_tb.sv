@@ -1,9 +1,9 @@
-// setup_tb: plain Verilog testbench of fxr_setup driven by the golden vectors (docs/vectors.md),
+// setup_tb: plain Verilog testbench of fxr_setup_fields driven by the golden vectors (docs/vectors.md),
 // for any simulator with SystemVerilog-2012 basics (checked with Icarus 11):
 //
 //   build/app/fxraster layout --emit-sv build/gen/fxr_vec_pkg.sv
 //   iverilog -g2012 -s setup_tb -I tb/icarus -y rtl -Y .sv build/gen/fxr_config_pkg.sv \
-//            build/gen/fxr_vec_pkg.sv rtl/fxr_setup.sv tb/icarus/setup_tb.sv
+//            build/gen/fxr_vec_pkg.sv rtl/fxr_setup_fields.sv tb/icarus/setup_tb.sv
 //   vvp -n a.out +vectors=$PWD/vectors/setup/setup.hex +count=<manifest count> [+seed=N]
 //
 // The line layout is not written here: fxr_vec_pkg (generated from the model's vector layout)
@@ -26,7 +26,7 @@ module setup_tb;
   setup_vec_t in_v;
   assign in_v = cur;
 
-  fxr_setup dut (
+  fxr_setup_fields dut (
     .clk_i         (clk),
     .rst_ni        (rst_n),
     .in_valid_i    (in_valid),
