@@ -1,0 +1,34 @@
+#!/bin/bash
+# LUT4 / flip-flop / logic-depth figure of the raster back end rtl/fxr_raster_backend.sv and of
+# its stages (docs/rtl.md, "fxr_raster_backend"):
+#   yosys: read_verilog -sv build/gen/fxr_config_pkg.sv build/gen/fxr_rec_pkg.sv rtl/<the modules>;
+#          synth -flatten -top TOP; abc -lut 4 -fast; opt_clean; stat; ltp -noff
+# `abc -lut 4 -fast` (ABC's short script, as scripts/synth_texaddr.sh FAST=1): the full script
+# does not finish on the wide datapaths within the time the shared machine gives.
+# Usage: scripts/synth_backend.sh GEN_DIR OUTDIR [TOP ...]   (default TOP: fxr_raster_backend)
+#   GEN_DIR: the folder of the generated packages (build/gen).
+# Prints one line per top: "<top> lut4=N ff=N depth=N seconds=S". Runs under nice -n 19; each top
+# is bounded by `timeout ${SYNTH_TIMEOUT:-1200}` seconds.
+set -euo pipefail
+gen=$(realpath "$1"); out=$(realpath -m "$2"); shift 2
+tops=("$@"); [ ${#tops[@]} -eq 0 ] && tops=(fxr_raster_backend)
+root=$(cd "$(dirname "$0")/.." && pwd)
+mkdir -p "$out"
+srcs=""
+for m in fxr_pipe fxr_setup_align fxr_setup_edges fxr_setup_attr fxr_setup_plane fxr_setup_fields fxr_setup \
+         fxr_traverse fxr_interp fxr_depth fxr_raster_backend; do
+  srcs="$srcs $root/rtl/$m.sv"
+done
+for top in "${tops[@]}"; do
+  log="$out/$top.log"
+  start=$(date +%s)
+  if ! nice -n 19 timeout "${SYNTH_TIMEOUT:-1200}" yosys -q -l "$log" -p "read_verilog -sv $gen/fxr_config_pkg.sv $gen/fxr_rec_pkg.sv $srcs; synth -flatten -top $top; abc -lut 4 -fast; opt_clean; stat; ltp -noff" >/dev/null 2>&1; then
+    echo "$top failed or timed out after $(( $(date +%s) - start )) s (log $log)"
+    continue
+  fi
+  secs=$(( $(date +%s) - start ))
+  lut=$(grep -E '^\s+\$lut\s' "$log" | tail -1 | awk '{print $2}')
+  ff=$(grep -E '^\s+\$_(S)?DFF' "$log" | awk '{s+=$2} END {print s+0}')
+  depth=$(grep -Eo 'Longest topological path in .* \(length=[0-9]+\)' "$log" | grep -Eo '[0-9]+\)$' | tr -d ')')
+  echo "$top lut4=${lut:-?} ff=$ff depth=${depth:-?} seconds=$secs"
+done

@@ -1,0 +1,508 @@
+// Whole draws through rtl/fxr_raster_backend.sv (Verilator) against the model's chain
+// (model/unit/chain.hpp): the setup.in stream of a draw, taken from the chain's taps, is driven
+// into the back end, and its fragment stream must equal the model's depth.out stream bit for bit
+// and in order (none lost, none duplicated), the final depth buffer behind the memory port the
+// model's, and the counter registers the model's statistics. Random input gaps, output
+// back-pressure and depth-memory latency / request stalls; the report and waveform of
+// tb/txn_harness.hpp on a mismatch. Draws: the default scene, every file of scenes/ (its
+// triangles), and 10^5 random triangles with the hard cases mixed in over the eight depth
+// functions. The checker can fail: a corrupted, a dropped and a swapped expected fragment are
+// each caught. docs/rtl.md, "fxr_raster_backend".
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <type_traits>
+
+#include "Vfxr_raster_backend.h"
+#include "depth_mem.hpp"
+#include "frontend/scene.hpp"
+#include "model/unit/chain.hpp"
+#include "model/vectors/record_vectors.hpp"
+#include "model/vectors/scene_dump.hpp"
+#include "txn/draw_state_ports.hpp"
+#include "txn_harness.hpp"
+
+namespace {
+
+using fxr::SceneStageVectors;
+using fxr::tb::DepthMem;
+using fxr::tb::DepthMemOptions;
+using fxr::tb::TxnHook;
+using fxr::tb::TxnOptions;
+using fxr::tb::TxnResult;
+using Dut = Vfxr_raster_backend;
+
+// The varyings the RTL was generated for (fxr_rec_pkg::NumVaryings, `fxraster layout
+// --emit-records-sv` at its default): a draw with fewer runs with this many (the extra varyings
+// are the scene's zeros), so the records fit the ports.
+constexpr int kRtlVaryings = 2;
+
+// ---- the model's streams of one draw -----------------------------------------------------------
+
+// Counters of the back end (rtl/fxr_raster_backend.sv, stat_*_o), in this order.
+constexpr int kStats = 10;
+const char* const kStatNames[kStats] = {"tri_in",  "tri_drawn", "tri_zero_area",  "tri_backface",    "tri_no_samples",
+                                        "tri_range", "spans",   "frag_generated", "frag_depth_pass", "frag_depth_fail"};
+using Stats = std::array<uint64_t, kStats>;
+
+// Taps: setup's inputs become the rows of an in-memory "setup.in" (txn, n_out, SetupTriangle),
+// the depth stage's outputs the rows of "backend.out" (txn, seq, last, PlaneSample) with txn the
+// setup input they came from — the transaction-dump rules (model/vectors/scene_dump.hpp).
+struct BackendTaps {
+  fxr::RecordShape shape;
+  SceneStageVectors v;
+  std::vector<fxr::SetupTriangle> tris;
+  uint64_t spans = 0;
+  uint64_t n_out = 0;
+  fxr::VecRow in_row, out_row;
+  bool out_pending = false;
+
+  BackendTaps(const fxr::Config& cfg, int varyings, const std::string& name) : shape{cfg, varyings} {
+    std::vector<fxr::VecField> fi = {{"txn", fxr::VecDir::In, fxr::kTxnIdBits, false, "transaction id"},
+                                     {"n_out", fxr::VecDir::In, fxr::kTxnCountBits, false, "fragments of this triangle"}};
+    fxr::append_record_fields<fxr::SetupTriangle>(shape, fxr::VecDir::In, fi);
+    std::vector<fxr::VecField> fo = {{"txn", fxr::VecDir::Out, fxr::kTxnIdBits, false, "setup.in txn"},
+                                     {"seq", fxr::VecDir::Out, fxr::kTxnCountBits, false, "index among the triangle's"},
+                                     {"last", fxr::VecDir::Out, 1, false, "last of the triangle"}};
+    fxr::append_record_fields<fxr::PlaneSample>(shape, fxr::VecDir::Out, fo);
+    v.stage = "backend";
+    v.cfg = cfg;
+    v.num_varyings = varyings;
+    v.in = fxr::SceneStageFile{name + ":setup.in", fxr::VecLayout(fi), fxr::kTxnInHeaderFields, 0, {}};
+    v.out = fxr::SceneStageFile{name + ":backend.out", fxr::VecLayout(fo), fxr::kTxnOutHeaderFields, 0, {}};
+    in_row.assign(v.in.lay.size(), 0);
+    out_row.assign(v.out.lay.size(), 0);
+  }
+  void flush_out(bool last) {
+    if (!out_pending) return;
+    out_row[2] = last;
+    v.out.data.insert(v.out.data.end(), out_row.begin(), out_row.end());
+    ++v.out.rows;
+    out_pending = false;
+  }
+  void flush_in() {
+    if (v.in.rows == 0 && tris.empty()) return;
+    v.in.data[(v.in.rows - 1) * v.in.lay.size() + 1] = n_out;
+  }
+  template <class S>
+  void in(const typename S::In& r) {
+    if constexpr (std::is_same_v<S, fxr::SetupStage>) {
+      flush_out(true);
+      if (v.in.rows) flush_in();
+      in_row[0] = v.in.rows;
+      in_row[1] = 0;
+      fxr::pack_record(r, shape, in_row, fxr::kTxnInHeaderFields, v.in.path);
+      v.in.data.insert(v.in.data.end(), in_row.begin(), in_row.end());
+      ++v.in.rows;
+      tris.push_back(r);
+      n_out = 0;
+    }
+  }
+  template <class S>
+  void out(const typename S::Out& r) {
+    if constexpr (std::is_same_v<S, fxr::DepthStage>) {
+      flush_out(false);
+      out_row[0] = v.in.rows - 1;
+      out_row[1] = n_out++;
+      fxr::pack_record(r, shape, out_row, fxr::kTxnOutHeaderFields, v.out.path);
+      out_pending = true;
+    }
+    if constexpr (std::is_same_v<S, fxr::TraverseStage>) ++spans;
+  }
+  void finish() {
+    flush_out(true);
+    if (v.in.rows) flush_in();
+  }
+};
+
+struct NullSink : fxr::FragmentSink {
+  void emit(const fxr::Fragment&) override {}
+};
+
+struct Draw {
+  std::string name;
+  fxr::DrawState st;
+  SceneStageVectors v;
+  std::vector<uint32_t> depth;  // the model's final buffer
+  Stats want{};
+  uint64_t fragments = 0;  // depth.out rows
+};
+
+// Runs the model's chain on `tris` and collects what the back end must reproduce.
+Draw model_draw(const std::string& name, const fxr::Config& cfg, fxr::DrawState st,
+                const std::vector<fxr::ClipTriangle>& tris) {
+  st.num_varyings = kRtlVaryings;
+  BackendTaps taps(cfg, kRtlVaryings, name);
+  fxr::FrameOutput f;
+  NullSink sink;  // varyings computed (the planes of every varying), fragments not kept
+  fxr::run_raster_unit_to(cfg, st, tris, f, &sink, taps);
+  taps.finish();
+  Draw d;
+  d.name = name;
+  d.st = st;
+  d.v = std::move(taps.v);
+  d.depth = std::move(f.depth);
+  d.fragments = d.v.out.rows;
+  // Setup outcomes per triangle: SetupStage stepped again on setup's inputs (the chain's
+  // accounting is per primitive, RasterStats).
+  fxr::SetupStage stage(cfg, st, true);
+  std::array<uint64_t, 5> oc{};
+  for (const fxr::SetupTriangle& t : taps.tris) ++oc[(size_t)stage.step(t, [](const fxr::TriangleEquations&) {})];
+  d.want = {taps.tris.size(), oc[0], oc[1], oc[2], oc[3], oc[4], taps.spans, f.stats.fragments_generated,
+            f.stats.fragments_depth_pass, f.stats.fragments_depth_fail};
+  EXPECT_EQ(d.want[8], d.fragments) << name << ": depth passes = depth.out rows";
+  return d;
+}
+
+// ---- the RTL run -------------------------------------------------------------------------------
+
+struct Handshake {
+  uint64_t seed = 1;
+  unsigned gap = 0, stall = 0;       // input gaps, output back-pressure (%)
+  unsigned lat_min = 1, lat_max = 1, req_stall = 0;  // depth memory
+};
+
+struct RtlRun {
+  TxnResult r;
+  Stats stats{};
+  std::vector<uint32_t> depth;
+  uint64_t bad_addresses = 0;
+};
+
+template <class T>
+uint64_t u64(const T& x) {
+  return (uint64_t)x;
+}
+
+RtlRun run_rtl(const Draw& d, const SceneStageVectors& v, const Handshake& h, const std::string& run,
+               bool write_wave = true) {
+  RtlRun out;
+  DepthMemOptions mo;
+  mo.seed = 1000 + h.seed;
+  mo.min_latency = h.lat_min;
+  mo.max_latency = h.lat_max;
+  mo.req_stall_pct = h.req_stall;
+  DepthMem mem((size_t)d.st.viewport_w * (size_t)d.st.viewport_h, (uint32_t)fxr::depth_max_code(v.cfg.raster), mo);
+  Stats& s = out.stats;
+  TxnHook<Dut> hook;
+  hook.reset = [&] {
+    mem.reset();
+    s = Stats{};
+  };
+  const int wib = v.cfg.raster.window_int_bits;
+  hook.drive = [&](Dut& dut) {
+    fxr::tb::drive_draw_state(dut, d.st, wib);
+    mem.drive(dut);
+  };
+  hook.observe = [&](Dut& dut) {
+    mem.observe(dut);
+    s = {u64(dut.stat_tri_in_o),         u64(dut.stat_tri_drawn_o),    u64(dut.stat_tri_zero_area_o),
+         u64(dut.stat_tri_backface_o),   u64(dut.stat_tri_no_samples_o), u64(dut.stat_tri_range_o),
+         u64(dut.stat_spans_o),          u64(dut.stat_frag_generated_o), u64(dut.stat_frag_depth_pass_o),
+         u64(dut.stat_frag_depth_fail_o)};
+  };
+  TxnOptions o;
+  o.unit = "backend";
+  o.run_name = run;
+  o.seed = h.seed;
+  o.in_gap_pct = h.gap;
+  o.out_stall_pct = h.stall;
+  o.write_wave = write_wave;
+  o.drain_cycles = 400;  // the depth queue's failed samples and the memory's last responses
+  out.r = fxr::tb::run_txn<Dut>(v, nullptr, o, &hook);
+  out.depth = mem.words();
+  out.bad_addresses = mem.bad_addresses;
+  return out;
+}
+
+std::string stats_text(const Stats& s) {
+  std::string t;
+  for (int i = 0; i < kStats; ++i) t += std::string(i ? ", " : "") + kStatNames[i] + " " + std::to_string(s[(size_t)i]);
+  return t;
+}
+
+// Every check of one run: the stream (the harness), the buffer, the counters.
+void expect_run_matches(const Draw& d, const RtlRun& k, const std::string& what) {
+  EXPECT_TRUE(k.r.passed()) << what;
+  EXPECT_EQ(k.r.inputs, d.v.in.rows) << what;
+  EXPECT_EQ(k.r.outputs, d.v.out.rows) << what;
+  EXPECT_EQ(k.bad_addresses, 0u) << what;
+  EXPECT_TRUE(k.depth == d.depth) << what << ": the final depth buffer differs from the model's";
+  EXPECT_EQ(k.stats, d.want) << what << "\n  rtl:   " << stats_text(k.stats) << "\n  model: " << stats_text(d.want);
+}
+
+// Figures of a run without gaps, stalls or memory latency beyond one clock.
+void print_figures(const Draw& d, const RtlRun& k) {
+  const uint64_t cyc = k.r.last_out_cycle > k.r.first_in_cycle ? k.r.last_out_cycle - k.r.first_in_cycle + 1 : 0;
+  std::printf("FIGURES %s: %llu triangles (%llu drawn), %llu spans, %llu fragments generated, %llu passed; %llu cycles "
+              "first input to last output: %.3f fragments/clock (generated), %.4f triangles/clock; "
+              "Verilator %.0f cycles/s, %.0f fragments/s\n",
+              d.name.c_str(), (unsigned long long)d.want[0], (unsigned long long)d.want[1], (unsigned long long)d.want[6],
+              (unsigned long long)d.want[7], (unsigned long long)d.want[8], (unsigned long long)cyc,
+              cyc ? (double)d.want[7] / (double)cyc : 0.0, cyc ? (double)d.want[0] / (double)cyc : 0.0,
+              k.r.seconds > 0 ? (double)k.r.cycles / k.r.seconds : 0.0,
+              k.r.seconds > 0 ? (double)d.want[7] / k.r.seconds : 0.0);
+}
+
+// ---- scenes ------------------------------------------------------------------------------------
+
+Draw scene_draw(const fxr::Scene& sc, const std::string& name) {
+  // More varyings than the RTL has (clip_triangles: 3): the draw runs with the first two —
+  // fxr_setup_fields has two varying ports (docs/rtl.md, "fxr_raster_backend": open points).
+  if (sc.state.num_varyings > kRtlVaryings)
+    std::printf("NOTE %s: %d varyings, run with the first %d (the RTL's varyings)\n", name.c_str(), sc.state.num_varyings,
+                kRtlVaryings);
+  return model_draw(name, sc.config, sc.state, sc.tris);
+}
+
+TEST(Backend, DefaultSceneMatchesTheModel) {
+  const fxr::Scene sc = fxr::default_scene();
+  const Draw d = scene_draw(sc, "default");
+  ASSERT_GT(d.fragments, 10000u);
+  const RtlRun a = run_rtl(d, d.v, Handshake{1, 0, 0, 1, 1, 0}, "backend_default");
+  expect_run_matches(d, a, "default, no gaps");
+  print_figures(d, a);
+  const RtlRun b = run_rtl(d, d.v, Handshake{2, 25, 25, 1, 12, 15}, "backend_default_random");
+  expect_run_matches(d, b, "default, gaps / back-pressure / latency 1..12");
+}
+
+TEST(Backend, SceneFilesMatchTheModel) {
+  int n = 0;
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(FXR_SOURCE_DIR) + "/scenes"))
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& p : files) {
+    const fxr::Scene sc = fxr::load_scene(p.string());
+    if (sc.tris.empty()) continue;
+    const std::string name = p.stem().string();
+    const Draw d = scene_draw(sc, name);
+    const RtlRun k = run_rtl(d, d.v, Handshake{(uint64_t)(10 + n), 20, 20, 1, 8, 10}, "backend_" + name);
+    expect_run_matches(d, k, name);
+    std::printf("scene %s: %llu triangles, %llu fragments passed: %s\n", name.c_str(), (unsigned long long)d.want[0],
+                (unsigned long long)d.fragments, k.r.passed() ? "equal" : "DIFFERENT");
+    ++n;
+  }
+  EXPECT_GE(n, 7);
+}
+
+
+// ---- random triangles with the hard cases ------------------------------------------------------
+
+// Window position (pixels, y up) → clip coordinates at w (viewport transform of stage 4 inverted
+// in double; the front end's single float32 rounding applies).
+struct Gen {
+  std::mt19937_64 rng;
+  double W, H;
+  explicit Gen(uint64_t seed, int w, int h) : rng(seed), W(w), H(h) {}
+  double uni(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+  int pick(int n) { return (int)(rng() % (uint64_t)n); }
+  fxr::ClipVertex vtx(double x, double y, double w, double z_ndc) {
+    fxr::ClipVertex v;
+    v.pos[0] = (float)((x / W * 2.0 - 1.0) * w);
+    v.pos[1] = (float)((y / H * 2.0 - 1.0) * w);
+    v.pos[2] = (float)(z_ndc * w);
+    v.pos[3] = (float)w;
+    for (int k = 0; k < kRtlVaryings; ++k) v.var[k] = (float)uni(-4.0, 4.0);
+    return v;
+  }
+  fxr::ClipTriangle tri(const double p[3][2], const double w[3]) {
+    fxr::ClipTriangle t;
+    for (int i = 0; i < 3; ++i) t.v[i] = vtx(p[i][0], p[i][1], w[i], uni(-0.99, 0.99));
+    if (rng() & 1) std::swap(t.v[1], t.v[2]);  // both windings
+    return t;
+  }
+  // Appends one case (two triangles for the shared-edge ties). Kinds, with their weights:
+  void add(std::vector<fxr::ClipTriangle>& out, std::array<uint64_t, 9>& kinds) {
+    const int r = pick(1000);
+    double p[3][2], w[3] = {1, 1, 1};
+    auto around = [&](double cx, double cy, double s) {
+      for (auto& q : p) {
+        q[0] = cx + uni(-s, s);
+        q[1] = cy + uni(-s, s);
+      }
+    };
+    const double cx = uni(-4, W + 4), cy = uni(-4, H + 4);
+    int kind;
+    if (r < 450) {  // 0: general small triangles, up to ~12 pixels across
+      kind = 0;
+      around(cx, cy, uni(1.0, 6.0));
+    } else if (r < 600) {  // 1: top-left ties: a quad on pixel centres / edges split along a diagonal
+      kind = 1;
+      const double x0 = std::floor(uni(0, W - 8)) + (pick(2) ? 0.5 : 0.0), y0 = std::floor(uni(0, H - 8)) + (pick(2) ? 0.5 : 0.0);
+      const double sx = 1 + pick(6), sy = 1 + pick(6);
+      const double q[4][2] = {{x0, y0}, {x0 + sx, y0}, {x0 + sx, y0 + sy}, {x0, y0 + sy}};
+      const int d = pick(2);
+      const double a[3][2] = {{q[0][0], q[0][1]}, {q[1 + d][0], q[1 + d][1]}, {q[2 + d][0], q[2 + d][1]}};
+      const double b[3][2] = {{q[0][0], q[0][1]}, {q[2 + d][0], q[2 + d][1]}, {q[(3 + d) % 4][0], q[(3 + d) % 4][1]}};
+      out.push_back(tri(a, w));
+      out.push_back(tri(b, w));
+      ++kinds[1];
+      return;
+    } else if (r < 720) {  // 2: 1-pixel and sub-pixel triangles
+      kind = 2;
+      around(std::floor(cx) + 0.5, std::floor(cy) + 0.5, uni(0.01, 0.9));
+    } else if (r < 800) {  // 3: slivers: long and thin
+      kind = 3;
+      const double ang = uni(0, 6.283185307179586), len = uni(8, 40), th = uni(0.001, 0.3);
+      p[0][0] = cx; p[0][1] = cy;
+      p[1][0] = cx + len * std::cos(ang); p[1][1] = cy + len * std::sin(ang);
+      p[2][0] = cx + 0.5 * len * std::cos(ang) - th * std::sin(ang);
+      p[2][1] = cy + 0.5 * len * std::sin(ang) + th * std::cos(ang);
+    } else if (r < 803) {  // 4: full viewport
+      kind = 4;
+      p[0][0] = -1; p[0][1] = -1; p[1][0] = 2 * W + 2; p[1][1] = -1; p[2][0] = -1; p[2][1] = 2 * H + 2;
+    } else if (r < 810) {  // 5: guard-band-sized: vertices far outside, covering a corner
+      kind = 5;
+      const double big = uni(1e3, 3e4);
+      p[0][0] = uni(0, W); p[0][1] = uni(0, H);
+      p[1][0] = p[0][0] + uni(2, 6); p[1][1] = -big;
+      p[2][0] = p[0][0] + big; p[2][1] = p[0][1] + uni(-3, 3);
+    } else if (r < 900) {  // 6: w ratio up to 10^6 inside a triangle (perspective)
+      kind = 6;
+      around(cx, cy, uni(1.0, 8.0));
+      w[0] = uni(0.001, 0.01);
+      w[1] = w[0] * uni(1e5, 1e6);
+      w[2] = uni(0.5, 2);
+    } else {  // 7: zero area: collinear or repeated vertices
+      kind = 7;
+      around(cx, cy, uni(1.0, 6.0));
+      if (pick(2)) {  // a repeated vertex
+        p[2][0] = p[0][0];
+        p[2][1] = p[0][1];
+      } else {  // three collinear points on whole pixels (exact after snapping)
+        p[0][0] = std::round(p[0][0]);
+        p[0][1] = std::round(p[0][1]);
+        p[1][0] = p[0][0] + 1 + pick(4);
+        p[1][1] = p[0][1] + pick(4);
+        const double t = 2 + pick(2);
+        p[2][0] = p[0][0] + t * (p[1][0] - p[0][0]);
+        p[2][1] = p[0][1] + t * (p[1][1] - p[0][1]);
+      }
+    }
+    ++kinds[(size_t)kind];
+    out.push_back(tri(p, w));
+  }
+};
+
+// One draw per depth function, the cull mode, winding, write mask and depth test varying with
+// it; kCasesPerDraw random cases each (a tie case is two triangles): 8 × 12,500 cases > 10^5 triangles.
+constexpr int kDraws = 8;
+constexpr int kCasesPerDraw = 12500;
+constexpr int kRandomViewport = 64;
+
+Draw random_draw(int d, std::array<uint64_t, 9>& kinds) {
+  fxr::Config cfg;
+  fxr::DrawState st;
+  st.viewport_w = st.viewport_h = kRandomViewport;
+  st.depth_func = (fxr::DepthFunc)d;
+  st.cull = (fxr::CullMode)(d % 3);
+  st.front_ccw = (d & 1) == 0;
+  st.depth_write = d != 3;
+  st.depth_test = d != 6;  // draw 6: test off (all pass, no memory traffic), its func unused
+  if (d == 5) {            // a scissor inside the viewport
+    st.scissor_x = 5;
+    st.scissor_y = 9;
+    st.scissor_w = 40;
+    st.scissor_h = 30;
+  }
+  st.interp = d == 4 ? fxr::InterpMode::Affine : fxr::InterpMode::Perspective;
+  Gen g(0x5eed0000u + (uint64_t)d, st.viewport_w, st.viewport_h);
+  std::vector<fxr::ClipTriangle> tris;
+  for (int i = 0; i < kCasesPerDraw; ++i) g.add(tris, kinds);
+  return model_draw("random_draw" + std::to_string(d), cfg, st, tris);
+}
+
+TEST(Backend, RandomTrianglesMatchTheModel) {
+  std::array<uint64_t, 9> kinds{};
+  uint64_t tris = 0, frags = 0;
+  Stats total{};
+  for (int d = 0; d < kDraws; ++d) {
+    const Draw dr = random_draw(d, kinds);
+    const RtlRun k = run_rtl(dr, dr.v, Handshake{(uint64_t)(100 + d), 20, 20, 1, 10, 10}, dr.name);
+    expect_run_matches(dr, k, dr.name);
+    tris += dr.want[0];
+    frags += dr.fragments;
+    for (int i = 0; i < kStats; ++i) total[(size_t)i] += dr.want[(size_t)i];
+    std::printf("%s: depth func %d: %llu setup triangles, %llu fragments passed, %.1f s\n", dr.name.c_str(), d,
+                (unsigned long long)dr.want[0], (unsigned long long)dr.fragments, k.r.seconds);
+  }
+  std::printf("random: %llu setup triangles; totals %s\n", (unsigned long long)tris, stats_text(total).c_str());
+  std::printf("random cases: general %llu, tie pairs %llu, (sub)pixel %llu, slivers %llu, full viewport %llu, guard band "
+              "%llu, w ratio 1e6 %llu, zero area %llu\n",
+              (unsigned long long)kinds[0], (unsigned long long)kinds[1], (unsigned long long)kinds[2],
+              (unsigned long long)kinds[3], (unsigned long long)kinds[4], (unsigned long long)kinds[5],
+              (unsigned long long)kinds[6], (unsigned long long)kinds[7]);
+  EXPECT_GE(tris, 100000u);
+  // Every outcome reached (the hard cases do what they are there for).
+  for (int i = 1; i <= 3; ++i) EXPECT_GT(total[(size_t)i], 0u) << kStatNames[i];  // zero area, back face, no samples
+  EXPECT_GT(total[9], 0u);  // depth fails
+}
+
+// ---- the checker can fail ----------------------------------------------------------------------
+
+// A small random draw; its expected stream altered three ways, each must be reported.
+TEST(Backend, CheckerCatchesCorruptedDroppedAndSwappedFragments) {
+  std::array<uint64_t, 9> kinds{};
+  fxr::Config cfg;
+  fxr::DrawState st;
+  st.viewport_w = st.viewport_h = kRandomViewport;
+  Gen g(77, st.viewport_w, st.viewport_h);
+  std::vector<fxr::ClipTriangle> tris;
+  for (int i = 0; i < 300; ++i) g.add(tris, kinds);
+  const Draw d = model_draw("checker", cfg, st, tris);
+  ASSERT_GT(d.v.out.rows, 100u);
+  const size_t n = d.v.out.lay.size();
+  const Handshake h{5, 20, 20, 1, 6, 10};
+  {  // as it is: passes
+    const RtlRun k = run_rtl(d, d.v, h, "backend_checker_clean");
+    expect_run_matches(d, k, "clean");
+  }
+  {  // one bit of the depth code of fragment 40 flipped: exactly that row and field
+    SceneStageVectors v = d.v;
+    size_t cd = 0;
+    for (size_t f = 0; f < n; ++f)
+      if (v.out.lay[f].name == "depth") cd = f;
+    ASSERT_GT(cd, 0u);
+    v.out.data[40 * n + cd] ^= 1;
+    const RtlRun k = run_rtl(d, v, h, "backend_checker_corrupt");
+    EXPECT_FALSE(k.r.passed());
+    EXPECT_EQ(k.r.errors, 1u);
+    ASSERT_EQ(k.r.mismatches.size(), 1u);
+    EXPECT_EQ(k.r.mismatches[0].out_row, 40u);
+    EXPECT_EQ(k.r.mismatches[0].cls, "depth");
+    EXPECT_NE(k.r.mismatches[0].text.find("backend.out:41: field 'depth'"), std::string::npos) << k.r.mismatches[0].text;
+    EXPECT_TRUE(std::filesystem::exists(k.r.wave));
+  }
+  {  // fragment 50 dropped from the expected stream: the RTL's extra fragment is reported
+    SceneStageVectors v = d.v;
+    v.out.data.erase(v.out.data.begin() + 50 * (ptrdiff_t)n, v.out.data.begin() + 51 * (ptrdiff_t)n);
+    --v.out.rows;
+    const RtlRun k = run_rtl(d, v, h, "backend_checker_dropped", false);
+    EXPECT_FALSE(k.r.passed());
+    EXPECT_GE(k.r.errors, 1u);
+    ASSERT_FALSE(k.r.mismatches.empty());
+    EXPECT_EQ(k.r.mismatches[0].out_row, 50u);
+  }
+  {  // fragments 60 and 61 swapped (different pixels): both reported
+    SceneStageVectors v = d.v;
+    size_t cx = 0;
+    for (size_t f = 0; f < n; ++f)
+      if (v.out.lay[f].name == "x") cx = f;
+    uint64_t a = 60;
+    while (a + 1 < v.out.rows && v.out.data[a * n + cx] == v.out.data[(a + 1) * n + cx]) ++a;
+    std::swap_ranges(v.out.data.begin() + (ptrdiff_t)(a * n), v.out.data.begin() + (ptrdiff_t)((a + 1) * n),
+                     v.out.data.begin() + (ptrdiff_t)((a + 1) * n));
+    const RtlRun k = run_rtl(d, v, h, "backend_checker_swapped", false);
+    EXPECT_FALSE(k.r.passed());
+    ASSERT_EQ(k.r.mismatches.size(), 2u);
+    EXPECT_EQ(k.r.mismatches[0].out_row, a);
+    EXPECT_EQ(k.r.mismatches[1].out_row, a + 1);
+  }
+}
+
+}  // namespace
