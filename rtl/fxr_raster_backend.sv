@@ -25,6 +25,14 @@
 //     frag_depth_pass RasterStats::fragments_depth_pass (samples out of fxr_depth)
 //     frag_depth_fail RasterStats::fragments_depth_fail (samples into fxr_depth − passed: exact
 //                   once the samples in flight have left the depth unit's queue)
+//   perf_*_o                        clocks in which a stage held a result its successor did not
+//                                   take (what limits the throughput, docs/rtl.md):
+//     setup_stall   a drawn triangle waits for traversal (busy) or the FIFO
+//     fifo_full     … of which the equations FIFO was full
+//     span_stall    a span waits for fxr_interp (busy with the span before)
+//     span_wait     a span waits for its equations (the FIFO head being retired)
+//     sample_stall  a sample waits for fxr_depth (memory latency / back-pressure, hazards)
+//     out_stall     a fragment waits at out_o (out_ready_i low)
 //
 // The triangle's equations for fxr_interp's ctx_i. fxr_traverse accepts the next triangle while
 // the spans of the previous one still travel to fxr_interp, so the equations wait in a FIFO of
@@ -41,6 +49,7 @@ module fxr_raster_backend #(
   parameter int TriFifoDepth    = 4,   // triangles between traversal's input and fxr_interp (power of two, ≥ 2)
   parameter int DepthQueueDepth = 8,   // fxr_depth's samples in flight (power of two)
   parameter int StatBits        = 32,  // counter registers (wrap at 2^StatBits)
+  parameter int InterpDivSteps  = 4,   // fxr_interp's DivStepsPerClock (quotient bits per clock)
   // derived (model/unit/io.hpp, model/stages/setup.hpp)
   localparam int Db       = DepthFormat == fxr_config_pkg::RasterDepthFormatD24 ? 24 : 16,
   localparam int PB       = WindowIntBits,      // pixel index (signed)
@@ -86,7 +95,13 @@ module fxr_raster_backend #(
   output logic [StatBits-1:0]           stat_spans_o,
   output logic [StatBits-1:0]           stat_frag_generated_o,
   output logic [StatBits-1:0]           stat_frag_depth_pass_o,
-  output logic [StatBits-1:0]           stat_frag_depth_fail_o
+  output logic [StatBits-1:0]           stat_frag_depth_fail_o,
+  output logic [StatBits-1:0]           perf_setup_stall_o,
+  output logic [StatBits-1:0]           perf_fifo_full_o,
+  output logic [StatBits-1:0]           perf_span_stall_o,
+  output logic [StatBits-1:0]           perf_span_wait_o,
+  output logic [StatBits-1:0]           perf_sample_stall_o,
+  output logic [StatBits-1:0]           perf_out_stall_o
 );
   if (TriFifoDepth < 2 || (TriFifoDepth & (TriFifoDepth - 1)) != 0) begin : g_bad_depth
     $error("fxr_raster_backend: TriFifoDepth must be a power of two, at least 2");
@@ -199,7 +214,7 @@ module fxr_raster_backend #(
   /* verilator lint_off UNUSEDSIGNAL */
   logic                       ip_out_last;
   /* verilator lint_on UNUSEDSIGNAL */
-  fxr_interp #(.WindowIntBits(WindowIntBits), .DepthFormat(DepthFormat)) u_interp (
+  fxr_interp #(.WindowIntBits(WindowIntBits), .DepthFormat(DepthFormat), .DivStepsPerClock(InterpDivSteps)) u_interp (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),
     .in_valid_i (ip_in_valid),
@@ -285,5 +300,25 @@ module fxr_raster_backend #(
   assign stat_frag_generated_o  = n_gen_q;
   assign stat_frag_depth_pass_o = n_pass_q;
   assign stat_frag_depth_fail_o = n_tested_q - n_pass_q;
+
+  logic [StatBits-1:0] p_setup_q, p_full_q, p_span_q, p_wait_q, p_sample_q, p_out_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      p_setup_q <= '0; p_full_q <= '0; p_span_q <= '0; p_wait_q <= '0; p_sample_q <= '0; p_out_q <= '0;
+    end else begin
+      if (su_valid && !su_ready) p_setup_q <= p_setup_q + StatBits'(1);
+      if (su_valid && fifo_full) p_full_q <= p_full_q + StatBits'(1);
+      if (ip_in_valid && !ip_in_ready) p_span_q <= p_span_q + StatBits'(1);
+      if (tv_out_valid && !ip_in_valid) p_wait_q <= p_wait_q + StatBits'(1);
+      if (ip_out_valid && !ip_out_ready) p_sample_q <= p_sample_q + StatBits'(1);
+      if (out_valid_o && !out_ready_i) p_out_q <= p_out_q + StatBits'(1);
+    end
+  end
+  assign perf_setup_stall_o  = p_setup_q;
+  assign perf_fifo_full_o    = p_full_q;
+  assign perf_span_stall_o   = p_span_q;
+  assign perf_span_wait_o    = p_wait_q;
+  assign perf_sample_stall_o = p_sample_q;
+  assign perf_out_stall_o    = p_out_q;
 
 endmodule

@@ -166,9 +166,14 @@ struct Handshake {
   unsigned lat_min = 1, lat_max = 1, req_stall = 0;  // depth memory
 };
 
+constexpr int kPerf = 6;
+const char* const kPerfNames[kPerf] = {"setup_stall", "fifo_full", "span_stall", "span_wait", "sample_stall", "out_stall"};
+using Perf = std::array<uint64_t, kPerf>;
+
 struct RtlRun {
   TxnResult r;
   Stats stats{};
+  Perf perf{};
   std::vector<uint32_t> depth;
   uint64_t bad_addresses = 0;
 };
@@ -189,9 +194,11 @@ RtlRun run_rtl(const Draw& d, const SceneStageVectors& v, const Handshake& h, co
   DepthMem mem((size_t)d.st.viewport_w * (size_t)d.st.viewport_h, (uint32_t)fxr::depth_max_code(v.cfg.raster), mo);
   Stats& s = out.stats;
   TxnHook<Dut> hook;
+  Perf& pf = out.perf;
   hook.reset = [&] {
     mem.reset();
     s = Stats{};
+    pf = Perf{};
   };
   const int wib = v.cfg.raster.window_int_bits;
   hook.drive = [&](Dut& dut) {
@@ -204,6 +211,8 @@ RtlRun run_rtl(const Draw& d, const SceneStageVectors& v, const Handshake& h, co
          u64(dut.stat_tri_backface_o),   u64(dut.stat_tri_no_samples_o), u64(dut.stat_tri_range_o),
          u64(dut.stat_spans_o),          u64(dut.stat_frag_generated_o), u64(dut.stat_frag_depth_pass_o),
          u64(dut.stat_frag_depth_fail_o)};
+    pf = {u64(dut.perf_setup_stall_o), u64(dut.perf_fifo_full_o),    u64(dut.perf_span_stall_o),
+          u64(dut.perf_span_wait_o),   u64(dut.perf_sample_stall_o), u64(dut.perf_out_stall_o)};
   };
   TxnOptions o;
   o.unit = "backend";
@@ -246,6 +255,11 @@ void print_figures(const Draw& d, const RtlRun& k) {
               cyc ? (double)d.want[7] / (double)cyc : 0.0, cyc ? (double)d.want[0] / (double)cyc : 0.0,
               k.r.seconds > 0 ? (double)k.r.cycles / k.r.seconds : 0.0,
               k.r.seconds > 0 ? (double)d.want[7] / k.r.seconds : 0.0);
+  std::printf("FIGURES %s: clocks per triangle %.2f, per span %.2f, per generated fragment %.3f; stall clocks:", d.name.c_str(),
+              d.want[0] ? (double)cyc / (double)d.want[0] : 0.0, d.want[6] ? (double)cyc / (double)d.want[6] : 0.0,
+              d.want[7] ? (double)cyc / (double)d.want[7] : 0.0);
+  for (int i = 0; i < kPerf; ++i) std::printf(" %s %llu", kPerfNames[i], (unsigned long long)k.perf[(size_t)i]);
+  std::printf("\n");
 }
 
 // ---- scenes ------------------------------------------------------------------------------------
@@ -268,6 +282,36 @@ TEST(Backend, DefaultSceneMatchesTheModel) {
   print_figures(d, a);
   const RtlRun b = run_rtl(d, d.v, Handshake{2, 25, 25, 1, 12, 15}, "backend_default_random");
   expect_run_matches(d, b, "default, gaps / back-pressure / latency 1..12");
+}
+
+// Figures at 1024 x 1024 (docs/rtl.md): the checkerboard face alone (the default scene without
+// its optional bunny) and scenes/bunny.json, zero-latency memory (a response the clock after the
+// request), no gaps, no back-pressure. Not run in CI (about a minute):
+//   build/tb/rtl_backend_test --gtest_also_run_disabled_tests --gtest_filter='Backend.DISABLED_*'
+TEST(Backend, DISABLED_Figures1024) {
+  fxr::SceneOptions so;
+  so.width = so.height = 1024;
+  so.no_optional = true;
+  {
+    const Draw d = scene_draw(fxr::default_scene(so), "checkerboard_1024");
+    const RtlRun k = run_rtl(d, d.v, Handshake{1, 0, 0, 1, 1, 0}, "backend_checkerboard_1024");
+    expect_run_matches(d, k, d.name);
+    print_figures(d, k);
+  }
+  fxr::SceneOptions sb;
+  sb.width = sb.height = 1024;
+  {
+    const Draw d = scene_draw(fxr::load_scene(std::string(FXR_SOURCE_DIR) + "/scenes/bunny.json", sb), "bunny_1024");
+    const RtlRun k = run_rtl(d, d.v, Handshake{1, 0, 0, 1, 1, 0}, "backend_bunny_1024");
+    expect_run_matches(d, k, d.name);
+    print_figures(d, k);
+  }
+  {
+    const Draw d = scene_draw(fxr::default_scene(sb), "default_1024");
+    const RtlRun k = run_rtl(d, d.v, Handshake{1, 0, 0, 1, 1, 0}, "backend_default_1024");
+    expect_run_matches(d, k, d.name);
+    print_figures(d, k);
+  }
 }
 
 TEST(Backend, SceneFilesMatchTheModel) {
