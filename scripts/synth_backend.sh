@@ -27,8 +27,10 @@ for top in "${tops[@]}"; do
     continue
   fi
   secs=$(( $(date +%s) - start ))
-  lut=$(grep -E '^\s+\$lut\s' "$log" | tail -1 | awk '{print $2}')
-  ff=$(grep -E '^\s+\$_(S)?DFF' "$log" | awk '{s+=$2} END {print s+0}')
+  # the last statistics (synth prints its own before abc): LUTs and every flip-flop cell type
+  last=$(awk '/Printing statistics/ {buf=""} {buf=buf $0 "\n"} END {printf "%s", buf}' "$log")
+  lut=$(printf '%b' "$last" | grep -E '^\s+\$lut\s' | tail -1 | awk '{print $2}')
+  ff=$(printf '%b' "$last" | grep -E '^\s+\$_(S)?DFF' | awk '{s+=$2} END {print s+0}')
   depth=$(grep -Eo 'Longest topological path in .* \(length=[0-9]+\)' "$log" | grep -Eo '[0-9]+\)$' | tr -d ')')
   echo "$top lut4=${lut:-?} ff=$ff depth=${depth:-?} seconds=$secs"
 done

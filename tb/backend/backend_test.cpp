@@ -128,20 +128,30 @@ struct Draw {
   fxr::DrawState st;
   SceneStageVectors v;
   std::vector<uint32_t> depth;  // the model's final buffer
+  uint32_t clear = 0;           // the buffer's value before the draw (both sides)
   Stats want{};
   uint64_t fragments = 0;  // depth.out rows
 };
 
-// Runs the model's chain on `tris` and collects what the back end must reproduce.
+// Runs the model's chain on `tris` and collects what the back end must reproduce. The depth
+// buffer starts at `clear` (the unit's clear value, the maximum code, when negative): the chain of
+// run_raster_unit_to on a buffer filled after frame_begin.
 Draw model_draw(const std::string& name, const fxr::Config& cfg, fxr::DrawState st,
-                const std::vector<fxr::ClipTriangle>& tris) {
+                const std::vector<fxr::ClipTriangle>& tris, int64_t clear = -1) {
   st.num_varyings = kRtlVaryings;
   BackendTaps taps(cfg, kRtlVaryings, name);
   fxr::FrameOutput f;
   NullSink sink;  // varyings computed (the planes of every varying), fragments not kept
-  fxr::run_raster_unit_to(cfg, st, tris, f, &sink, taps);
+  fxr::frame_begin(cfg, st, f);
+  const uint32_t clear_code = clear < 0 ? (uint32_t)fxr::depth_max_code(cfg.raster) : (uint32_t)clear;
+  std::fill(f.depth.begin(), f.depth.end(), clear_code);
+  {
+    fxr::UnitChain<BackendTaps> chain(cfg, st, f, &sink, taps);
+    for (size_t p = 0; p < tris.size(); ++p) chain.draw(tris[p], (uint32_t)p);
+  }
   taps.finish();
   Draw d;
+  d.clear = clear_code;
   d.name = name;
   d.st = st;
   d.v = std::move(taps.v);
@@ -191,7 +201,7 @@ RtlRun run_rtl(const Draw& d, const SceneStageVectors& v, const Handshake& h, co
   mo.min_latency = h.lat_min;
   mo.max_latency = h.lat_max;
   mo.req_stall_pct = h.req_stall;
-  DepthMem mem((size_t)d.st.viewport_w * (size_t)d.st.viewport_h, (uint32_t)fxr::depth_max_code(v.cfg.raster), mo);
+  DepthMem mem((size_t)d.st.viewport_w * (size_t)d.st.viewport_h, d.clear, mo);
   Stats& s = out.stats;
   TxnHook<Dut> hook;
   Perf& pf = out.perf;
@@ -447,7 +457,7 @@ Draw random_draw(int d, std::array<uint64_t, 9>& kinds) {
   st.cull = (fxr::CullMode)(d % 3);
   st.front_ccw = (d & 1) == 0;
   st.depth_write = d != 3;
-  st.depth_test = d != 6;  // draw 6: test off (all pass, no memory traffic), its func unused
+  st.depth_test = d != 7;  // draw 7 (always): test off (all pass, no memory traffic)
   if (d == 5) {            // a scissor inside the viewport
     st.scissor_x = 5;
     st.scissor_y = 9;
@@ -458,7 +468,30 @@ Draw random_draw(int d, std::array<uint64_t, 9>& kinds) {
   Gen g(0x5eed0000u + (uint64_t)d, st.viewport_w, st.viewport_h);
   std::vector<fxr::ClipTriangle> tris;
   for (int i = 0; i < kCasesPerDraw; ++i) g.add(tris, kinds);
-  return model_draw("random_draw" + std::to_string(d), cfg, st, tris);
+  int64_t clear = -1;
+  if (st.depth_func == fxr::DepthFunc::Equal || st.depth_func == fxr::DepthFunc::NotEqual) {
+    // A full-viewport triangle of constant z first, on a buffer holding the code it produces
+    // (found by the model drawing it alone with depth func always): equal passes all of it,
+    // not equal none of it.
+    double p[3][2] = {{-1, -1}, {2.0 * kRandomViewport + 2, -1}, {-1, 2.0 * kRandomViewport + 2}};
+    const double w[3] = {1, 1, 1};
+    fxr::ClipTriangle t = g.tri(p, w);
+    for (auto& v : t.v) v.pos[2] = 0.25f;
+    fxr::ClipTriangle u = t;  // both windings: the draw's cull mode removes one of them
+    std::swap(u.v[1], u.v[2]);
+    tris.insert(tris.begin(), {t, u});
+    fxr::DrawState probe = st;
+    probe.depth_func = fxr::DepthFunc::Always;
+    probe.cull = fxr::CullMode::None;
+    probe.scissor_w = probe.scissor_h = -1;
+    const Draw pd = model_draw("probe", cfg, probe, {t});
+    clear = pd.depth[(size_t)(kRandomViewport / 2) * kRandomViewport + kRandomViewport / 2];
+  }
+  // greater, greater or equal, and less or equal without writes start from a half-full buffer
+  // (the cleared maximum code would pass nothing or everything).
+  const bool mid = st.depth_func == fxr::DepthFunc::Greater || st.depth_func == fxr::DepthFunc::GreaterEqual ||
+                   !st.depth_write;
+  return model_draw("random_draw" + std::to_string(d), cfg, st, tris, mid ? (int64_t)(fxr::depth_max_code(cfg.raster) / 2) : clear);
 }
 
 TEST(Backend, RandomTrianglesMatchTheModel) {
@@ -469,6 +502,9 @@ TEST(Backend, RandomTrianglesMatchTheModel) {
     const Draw dr = random_draw(d, kinds);
     const RtlRun k = run_rtl(dr, dr.v, Handshake{(uint64_t)(100 + d), 20, 20, 1, 10, 10}, dr.name);
     expect_run_matches(dr, k, dr.name);
+    // Every function decides both ways (never: nothing passes; test off: nothing fails).
+    if (d != (int)fxr::DepthFunc::Never) EXPECT_GT(dr.want[8], 0u) << dr.name << ": nothing passed";
+    if (dr.st.depth_test) EXPECT_GT(dr.want[9], 0u) << dr.name << ": nothing failed";
     tris += dr.want[0];
     frags += dr.fragments;
     for (int i = 0; i < kStats; ++i) total[(size_t)i] += dr.want[(size_t)i];
