@@ -136,7 +136,9 @@ module fxr_raster_backend #(
   );
 
   // ---- the equations FIFO (setup → traversal, kept for interp's ctx_i) ------------------------
-  fxr_rec_pkg::triangle_equations_t eq_q [TriFifoDepth];
+  // A packed 2-D array (Yosys 0.23 reads an unpacked array of packed structs as one entry).
+  localparam int EqBits = fxr_rec_pkg::TriangleEquationsBits;
+  logic [TriFifoDepth-1:0][EqBits-1:0] eq_q;
   logic [FB-1:0] wr_q, rd_q, fin_q;
   logic          fifo_full, fifo_empty, push, pop;
   assign fifo_full  = (wr_q - rd_q) == FB'(TriFifoDepth);
@@ -177,11 +179,13 @@ module fxr_raster_backend #(
   assign hit_next = tv_out_valid & ((wr_q - rd_q) >= FB'(2)) & (span_tag == rd_next);
   assign sel_next = ~hit_head & hit_next;
 
+  logic [FB-2:0]                    rd_sel;  // the FIFO entry of the span
+  assign rd_sel = sel_next ? rd_next[FB-2:0] : rd_q[FB-2:0];
   logic                             ip_in_valid, ip_in_ready;
   fxr_rec_pkg::span_t               ip_in;
   fxr_rec_pkg::triangle_equations_t ip_ctx;
   always_comb begin
-    ip_ctx     = eq_q[sel_next ? rd_next[FB-2:0] : rd_q[FB-2:0]];
+    ip_ctx     = fxr_rec_pkg::triangle_equations_t'(eq_q[rd_sel]);
     ip_in      = tv_out;
     ip_in.prim = ip_ctx.prim;
   end
@@ -205,7 +209,7 @@ module fxr_raster_backend #(
     end
   end
   always_ff @(posedge clk_i) begin
-    if (push) eq_q[wr_q[FB-2:0]] <= su_out;
+    if (push) eq_q[wr_q[FB-2:0]] <= EqBits'(su_out);
   end
 
   // ---- stage 7: interpolators -------------------------------------------------------------------

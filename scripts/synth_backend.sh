@@ -2,9 +2,10 @@
 # LUT4 / flip-flop / logic-depth figure of the raster back end rtl/fxr_raster_backend.sv and of
 # its stages (docs/rtl.md, "fxr_raster_backend"):
 #   yosys: read_verilog -sv build/gen/fxr_config_pkg.sv build/gen/fxr_rec_pkg.sv rtl/<the modules>;
-#          synth -flatten -top TOP; abc -lut 4 -fast; opt_clean; stat; ltp -noff
-# `abc -lut 4 -fast` (ABC's short script, as scripts/synth_texaddr.sh FAST=1): the full script
-# does not finish on the wide datapaths within the time the shared machine gives.
+#          synth -flatten -noabc -top TOP; abc -lut 4 -fast; opt_clean; stat; ltp -noff
+# `abc -lut 4 -fast` (ABC's short script, as scripts/synth_texaddr.sh FAST=1) and no ABC run inside
+# synth: the full script does not finish on the wide datapaths (fxr_setup's plane products: about
+# 700,000 gates) within the time the shared machine gives.
 # Usage: scripts/synth_backend.sh GEN_DIR OUTDIR [TOP ...]   (default TOP: fxr_raster_backend)
 #   GEN_DIR: the folder of the generated packages (build/gen).
 # Prints one line per top: "<top> lut4=N ff=N depth=N seconds=S". Runs under nice -n 19; each top
@@ -22,7 +23,7 @@ done
 for top in "${tops[@]}"; do
   log="$out/$top.log"
   start=$(date +%s)
-  if ! nice -n 19 timeout "${SYNTH_TIMEOUT:-1200}" yosys -q -l "$log" -p "read_verilog -sv $gen/fxr_config_pkg.sv $gen/fxr_rec_pkg.sv $srcs; synth -flatten -top $top; abc -lut 4 -fast; opt_clean; stat; ltp -noff" >/dev/null 2>&1; then
+  if ! nice -n 19 timeout "${SYNTH_TIMEOUT:-1200}" yosys -q -l "$log" -p "read_verilog -sv $gen/fxr_config_pkg.sv $gen/fxr_rec_pkg.sv $srcs; synth -flatten -noabc -top $top; abc -lut 4 -fast; opt_clean; stat; ltp -noff" >/dev/null 2>&1; then
     echo "$top failed or timed out after $(( $(date +%s) - start )) s (log $log)"
     continue
   fi
