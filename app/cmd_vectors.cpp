@@ -8,6 +8,7 @@
 #include "command.hpp"
 #include "frontend/scene.hpp"
 #include "model/config/config.hpp"
+#include "model/unit/raster_unit.hpp"
 #include "model/vectors/scene_dump.hpp"
 #include "model/vectors/vectors.hpp"
 
@@ -24,6 +25,7 @@ struct Opts {
   bool list = false;
   bool use_default = false, no_bunny = false, wireframe = false;
   int width = 0, height = 0;
+  uint64_t max_fragments = 0;
 };
 
 namespace fs = std::filesystem;
@@ -69,6 +71,56 @@ int run_scene(const Opts& o) {
   return 0;
 }
 
+// `vectors texaddr SCENE|--default`: the texture address unit's vectors from a whole draw — every
+// fragment the triangles of the scene produce (what `fxraster render` shades through the unit; line
+// fragments are flat-coloured), its texture coordinates on the scene's texture size, under both
+// filters and all four wrap modes (docs/texaddr.md).
+int run_texaddr_scene(const Opts& o) {
+  const bool has_scene = o.args.size() == 2;
+  if (has_scene == o.use_default) throw fxr::ConfigError("vectors texaddr: give at most one of SCENE or --default");
+  if (o.wireframe) throw fxr::ConfigError("vectors texaddr: --wireframe adds line fragments, which are not textured");
+  fxr::SceneOptions so;
+  so.width = o.width;
+  so.height = o.height;
+  so.no_optional = o.no_bunny;
+  fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.args[1], so);
+  if (!o.config.empty()) fxr::apply_config_file(sc, o.config);
+  if (sc.u_varying < 0 || sc.v_varying < 0)
+    throw fxr::ConfigError("vectors texaddr: the scene has no texture coordinates (varyings u / v are -1)");
+  const fxr::FrameOutput fo = fxr::run_raster_unit(sc.config, sc.state, sc.tris);
+  std::vector<std::array<fxr::FxFloat, 2>> uv;
+  uv.reserve(fo.fragments.size());
+  // --max-fragments N: every k-th fragment of the draw, k = ceil(n / N) (a bounded run that still
+  // spans the whole draw; docs/texaddr.md).
+  const size_t n = fo.fragments.size();
+  const size_t step = o.max_fragments > 0 && n > o.max_fragments ? (n + o.max_fragments - 1) / o.max_fragments : 1;
+  for (size_t i = 0; i < n; i += step) uv.push_back({fo.fragments[i].var[sc.u_varying], fo.fragments[i].var[sc.v_varying]});
+  const auto rows = fxr::texaddr_fragment_rows(sc.config, uv, (uint32_t)sc.texture.image.width,
+                                               (uint32_t)sc.texture.image.height);
+  std::error_code ec;
+  std::filesystem::create_directories(o.out, ec);
+  if (ec) throw fxr::ConfigError(o.out + ": cannot create the folder: " + ec.message());
+  const nlohmann::json extra = {{"scene", sc.name},
+                                {"fragments", (uint64_t)uv.size()},
+                                {"fragments_in_draw", (uint64_t)n},
+                                {"fragment_step", (uint64_t)step},
+                                {"texture_width", sc.texture.image.width},
+                                {"texture_height", sc.texture.image.height},
+                                {"row_order", "the draw's fragment order (every fragment_step-th), then filter "
+                                              "(nearest, bilinear), then wrap (repeat, mirrored_repeat, "
+                                              "clamp_to_edge, clamp_to_border): 8 rows per fragment"}};
+  // Filter and wrap are inputs of every row (texture state, ports of fxr_texaddr): the manifest
+  // records the configuration with their defaults, as the unit's other vector files do.
+  fxr::Config cfg = sc.config;
+  cfg.tex_addr.filter = fxr::TexAddrConfig{}.filter;
+  cfg.tex_addr.wrap = fxr::TexAddrConfig{}.wrap;
+  const auto m = fxr::write_unit_rows("texaddr", cfg, rows, "scene", o.out, extra);
+  std::cout << "wrote " << o.out << "/" << m.hex_file << " (" << m.count << " vectors: " << uv.size()
+            << " fragments x 2 filters x 4 wraps, texture " << sc.texture.image.width << " x "
+            << sc.texture.image.height << ") and " << fxr::vec_manifest_path(o.out + "/" + m.hex_file) << "\n";
+  return 0;
+}
+
 int run_check(const Opts& o, const std::string& path) {
   if (is_scene_dump(path)) return run_check_dump(path);
   const fxr::Config cfg = o.config.empty() ? fxr::Config{} : fxr::load_config(o.config);
@@ -102,8 +154,10 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_option("--out", o->out, "output folder: writes OUT/UNIT.hex and OUT/UNIT.json");
   sub.add_flag("--exhaustive", o->exhaustive, "sweep the whole input domain instead of random cases");
   sub.add_flag("--no-recompute", o->no_recompute, "check: validate the format only, do not rerun the model");
-  sub.add_flag("--default", o->use_default, "scene: the embedded default scene");
+  sub.add_flag("--default", o->use_default, "scene, texaddr: the embedded default scene");
   sub.add_flag("--no-bunny", o->no_bunny, "scene: skip the scene's optional objects");
+  sub.add_option("--max-fragments", o->max_fragments,
+                 "texaddr SCENE|--default: at most N fragments, every k-th of the draw (default: all)");
   sub.add_flag("--wireframe", o->wireframe,
                "scene, with --default: the default scene's wireframe variant (the face's edges and the bunny's "
                "silhouette as line segments, as `render --default --wireframe`)");
@@ -114,8 +168,9 @@ fxr::app::Runner setup(CLI::App& sub) {
       "Every line is one hex word ($readmemh); the manifest names the fields (docs/vectors.md).\n"
       "`vectors scene` writes OUT/<stage>.in.hex and OUT/<stage>.out.hex for every stage of the\n"
       "unit, the line path's included (transactions: txn / n_out / seq / last) and OUT/scene.json;\n"
-      "`vectors check OUT`\n"
-      "re-reads the dump and re-steps every stage against it.");
+      "`vectors check OUT` re-reads the dump and re-steps every stage against it.\n"
+      "`vectors texaddr SCENE|--default` writes the texture address unit's vectors of the scene's\n"
+      "fragments (both filters, every wrap mode).");
   return [o]() {
     if (o->list) {
       for (const auto& u : fxr::vector_units()) std::cout << u.name << "\n";
@@ -123,6 +178,7 @@ fxr::app::Runner setup(CLI::App& sub) {
     }
     if (o->args.empty()) throw fxr::ConfigError("vectors: missing the UNIT (one of `fxraster vectors --list`) or `check FILE`");
     if (o->args[0] == "scene") return run_scene(*o);
+    if (o->args[0] == "texaddr" && (o->args.size() == 2 || o->use_default)) return run_texaddr_scene(*o);
     if (o->args[0] == "check") {
       if (o->args.size() != 2) throw fxr::ConfigError("vectors check: expected one FILE (the .hex)");
       return run_check(*o, o->args[1]);

@@ -298,6 +298,64 @@ VecManifest write_unit_vectors(const std::string& unit, const Config& cfg, uint6
   return man;
 }
 
+VecManifest write_unit_rows(const std::string& unit, const Config& cfg, const std::vector<VecRow>& inputs,
+                            const std::string& kind, const std::string& dir, const nlohmann::json& extra) {
+  auto m = make_vector_model(unit, cfg);
+  VecWriter w(dir + "/" + unit + ".hex", m->layout());
+  VecManifest man;
+  man.unit = unit;
+  man.config = m->config_json();
+  VecRow r;
+  for (const VecRow& in : inputs) {
+    if (in.size() != m->layout().size())
+      throw ConfigError("vectors " + unit + ": a row of " + std::to_string(in.size()) + " fields, the layout has " +
+                        std::to_string(m->layout().size()));
+    r = in;
+    m->compute(r);
+    w.write(r);
+  }
+  man.cases = {{kind, 0, w.count()}};
+  w.finish(man, extra);
+  man.count = w.count();
+  man.hex_file = unit + ".hex";
+  man.layout = m->layout();
+  return man;
+}
+
+std::vector<VecRow> texaddr_fragment_rows(const Config& cfg, const std::vector<std::array<FxFloat, 2>>& uv,
+                                          uint32_t width, uint32_t height) {
+  const TexAddrConfig& c = cfg.tex_addr;
+  const uint64_t max_size = 1ull << c.size_bits;
+  if (width < 1 || height < 1 || width > max_size || height > max_size)
+    throw ConfigError("vectors texaddr: texture size " + std::to_string(width) + " x " + std::to_string(height) +
+                      " is outside [1, 2^tex_addr.size_bits]");
+  const int emin = -(1 << (c.exp_bits - 1)), emax = (1 << (c.exp_bits - 1)) - 1;
+  const size_t nf = make_vector_model("texaddr", cfg)->layout().size();
+  std::vector<VecRow> rows;
+  rows.reserve(uv.size() * 8);
+  for (size_t i = 0; i < uv.size(); ++i)
+    for (uint64_t fil = 0; fil < 2; ++fil)  // nearest, bilinear
+      for (uint64_t wrap = 0; wrap < 4; ++wrap) {  // the order of tex_addr.wrap
+        VecRow r(nf, 0);
+        r[0] = fil;
+        r[1] = wrap;
+        for (int a = 0; a < 2; ++a) {
+          const FxFloat& x = uv[i][a];
+          if (x.exp < emin || x.exp > emax || x.sig >> c.sig_bits)
+            throw ConfigError("vectors texaddr: fragment " + std::to_string(i) + ": coordinate " + (a ? "v" : "u") +
+                              " (exponent " + std::to_string(x.exp) +
+                              ") does not fit the unit's input fields (tex_addr.exp_bits, sig_bits)");
+          r[2 + 3 * (size_t)a] = x.neg;
+          r[3 + 3 * (size_t)a] = vec_pack(x.exp, c.exp_bits);
+          r[4 + 3 * (size_t)a] = x.sig;
+        }
+        r[8] = width;
+        r[9] = height;
+        rows.push_back(std::move(r));
+      }
+  return rows;
+}
+
 // ---- reader / validator ----------------------------------------------------------------------
 
 namespace {

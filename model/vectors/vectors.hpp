@@ -14,6 +14,7 @@
 // exhaustive cases. Everything else (writer, reader / validator, CLI, testbenches) is generic.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -24,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/arith/fixed.hpp"
+#include "model/arith/fxfloat.hpp"
 #include "model/config/config.hpp"
 #include "model/unit/stage.hpp"
 
@@ -192,6 +194,20 @@ class VecWriter {
 // Generates the unit's vectors into DIR/<unit>.hex + DIR/<unit>.json; returns the manifest.
 VecManifest write_unit_vectors(const std::string& unit, const Config& cfg, uint64_t seed,
                                uint64_t count, bool exhaustive, const std::string& dir);
+
+// Writes the given input rows (outputs recomputed by the unit's model) into DIR/<unit>.hex +
+// DIR/<unit>.json, one case range of kind `kind`; `extra`: top-level manifest keys added.
+VecManifest write_unit_rows(const std::string& unit, const Config& cfg, const std::vector<VecRow>& inputs,
+                            const std::string& kind, const std::string& dir,
+                            const nlohmann::json& extra = nlohmann::json::object());
+
+// Input rows of the texaddr unit for fragments' texture coordinates (u, v: the divider's FxFloat
+// outputs) on a width × height texture: every fragment under each filter (nearest, bilinear) and
+// wrap mode (repeat, mirrored_repeat, clamp_to_edge, clamp_to_border): 8 consecutive rows per
+// fragment, filter-major, in fragment order (so every prefix of 8k rows holds every mode). ConfigError when a coordinate or the size does not
+// fit the unit's input fields.
+std::vector<VecRow> texaddr_fragment_rows(const Config& cfg, const std::vector<std::array<FxFloat, 2>>& uv,
+                                          uint32_t width, uint32_t height);
 
 // A vector file in memory, rows stored flat (row i, field f at data[i·nfields + f]).
 struct VecFile {
