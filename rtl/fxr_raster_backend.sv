@@ -136,9 +136,10 @@ module fxr_raster_backend #(
   );
 
   // ---- the equations FIFO (setup → traversal, kept for interp's ctx_i) ------------------------
-  // A packed 2-D array (Yosys 0.23 reads an unpacked array of packed structs as one entry).
+  // One flat vector, entry k at [k·EqBits +: EqBits] (Yosys 0.23 reads an unpacked array of
+  // packed structs as a single entry, and no packed 2-D arrays).
   localparam int EqBits = fxr_rec_pkg::TriangleEquationsBits;
-  logic [TriFifoDepth-1:0][EqBits-1:0] eq_q;
+  logic [TriFifoDepth*EqBits-1:0] eq_q;
   logic [FB-1:0] wr_q, rd_q, fin_q;
   logic          fifo_full, fifo_empty, push, pop;
   assign fifo_full  = (wr_q - rd_q) == FB'(TriFifoDepth);
@@ -185,7 +186,7 @@ module fxr_raster_backend #(
   fxr_rec_pkg::span_t               ip_in;
   fxr_rec_pkg::triangle_equations_t ip_ctx;
   always_comb begin
-    ip_ctx     = fxr_rec_pkg::triangle_equations_t'(eq_q[rd_sel]);
+    ip_ctx     = eq_q[rd_sel * EqBits +: EqBits];
     ip_in      = tv_out;
     ip_in.prim = ip_ctx.prim;
   end
@@ -209,7 +210,7 @@ module fxr_raster_backend #(
     end
   end
   always_ff @(posedge clk_i) begin
-    if (push) eq_q[wr_q[FB-2:0]] <= EqBits'(su_out);
+    if (push) eq_q[wr_q[FB-2:0] * EqBits +: EqBits] <= su_out;
   end
 
   // ---- stage 7: interpolators -------------------------------------------------------------------
