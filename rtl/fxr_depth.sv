@@ -39,14 +39,15 @@
 module fxr_depth #(
   parameter int WindowIntBits = fxr_config_pkg::RasterWindowIntBits,
   parameter int DepthFormat   = fxr_config_pkg::RasterDepthFormat,  // raster_depth_format_e
-  parameter int QueueDepth    = 8,  // samples in flight (a power of two)
+  parameter int QueueDepth    = 8,  // samples in flight (a power of two; kDepthQueueDepth of the model's cost)
   // derived (model/unit/io.hpp, model/stages/setup.hpp)
   localparam int Db        = DepthFormat == fxr_config_pkg::RasterDepthFormatD24 ? 24 : 16,
   localparam int PB        = WindowIntBits,                 // pixel index (signed)
   localparam int AddrBits  = 2 * WindowIntBits,             // pixel index of the buffer
   localparam int NumFuncs  = 8,                             // DepthFunc values
   localparam int FuncBits  = $clog2(NumFuncs),              // kDepthFuncBits
-  localparam int QB        = $clog2(QueueDepth)
+  localparam int QB        = $clog2(QueueDepth),
+  localparam int PSB       = fxr_rec_pkg::PlaneSampleBits
 ) (
   input  logic                          clk_i,
   input  logic                          rst_ni,
@@ -89,7 +90,7 @@ module fxr_depth #(
   end
 
   // ---- the queue ------------------------------------------------------------------------------
-  fxr_rec_pkg::plane_sample_t q_rec_q [QueueDepth];
+  logic [PSB-1:0]             q_rec_q [QueueDepth];     // (arrays of plain vectors: Yosys 0.23)
   logic [AddrBits-1:0]        q_addr_q [QueueDepth];
   logic [Db-1:0]              q_depth_q [QueueDepth];   // the sample's code (in_i.depth)
   logic [Db-1:0]              q_stored_q [QueueDepth];
@@ -127,7 +128,7 @@ module fxr_depth #(
   end
 
   // ---- output FIFO (2 entries) ----------------------------------------------------------------
-  fxr_rec_pkg::plane_sample_t of_rec_q [2];
+  logic [PSB-1:0]             of_rec_q [2];
   logic                       of_rd_q, of_wr_q;
   logic [1:0]                 of_count_q;
   logic                       of_room;

@@ -26,9 +26,12 @@
 //
 // Timing (InterpStage::cost()): two parts. The front accepts a span (planes evaluated in the
 // accepting clock), normalises (1 clock), divides (ceil(bits of the longer quotient /
-// DivStepsPerClock) clocks, at least 1) and hands the span start to the back; the back emits one
-// sample per clock and takes the next span start in the clock of its last sample, so the front
-// works on span k + 1 while span k is emitted. out_ready_i low holds the sample.
+// DivStepsPerClock) clocks, at least 1) and hands the span start to the back (1 clock, in which
+// it accepts the next span); the back emits one sample per clock and takes the next span start
+// in the clock of its last sample, so the front works on span k + 1 while span k is emitted.
+// A span thus occupies the front 2 + ceil(qbits / DivStepsPerClock) clocks (qbits: the longer
+// of the two quotients' bit counts, about 25 for the depth code at d24) and the back one clock
+// per pixel. out_ready_i low holds the sample.
 module fxr_interp #(
   parameter int SubpixelBits     = fxr_config_pkg::RasterSubpixelBits,
   parameter int WindowIntBits    = fxr_config_pkg::RasterWindowIntBits,
@@ -40,8 +43,8 @@ module fxr_interp #(
   parameter int RecipExpBits     = fxr_config_pkg::RecipExpBits,
   parameter int NumVaryings      = fxr_rec_pkg::NumVaryings,
   // Micro-architecture: quotient bits of the span-start divisions per clock (restoring steps
-  // chained in one clock).
-  parameter int DivStepsPerClock = 4,
+  // chained in one clock; kInterpDivStepsPerClock of the model's cost).
+  parameter int DivStepsPerClock = 8,
   // derived (model/stages/setup.hpp, model/unit/record.hpp)
   localparam bit Attr       = AttrSubpixelBits > SubpixelBits,    // attr_planes
   localparam int G          = SubpixelBits > 0 ? SubpixelBits : 1,
@@ -214,7 +217,7 @@ module fxr_interp #(
           s_cnt[d] = s_cnt[d] - CntB'(1);
         end
     end
-    div_done = f_cnt_q[0] == '0 && f_cnt_q[1] == '0;
+    div_done = s_cnt[0] == '0 && s_cnt[1] == '0;  // the last quotient bits are taken this clock
   end
 
   // Sign fix of floor division: q = −|q| (exact) or −|q| − 1 with r = den − rem.
@@ -248,7 +251,10 @@ module fxr_interp #(
   assign b_free  = ~b_valid_q | (b_fire & b_last);
   assign handoff = front_q == FrDone & b_free;
 
-  assign in_ready_o = front_q == FrIdle;
+  // A span is accepted while the front is idle or in the clock it hands its span to the back.
+  logic accept;
+  assign in_ready_o = front_q == FrIdle || handoff;
+  assign accept     = in_valid_i & in_ready_o;
 
   // The depth code of the current sample: RNE(q + r/den), clamped to [0, 2^db − 1].
   logic [RB-1:0]        two_r;
@@ -297,10 +303,10 @@ module fxr_interp #(
       b_valid_q <= 1'b0;
     end else begin
       unique case (front_q)
-        FrIdle: if (in_valid_i) front_q <= FrNorm;
+        FrIdle: if (accept) front_q <= FrNorm;
         FrNorm: front_q <= FrDiv;
         FrDiv: if (div_done) front_q <= FrDone;
-        FrDone: if (b_free) front_q <= FrIdle;
+        FrDone: if (b_free) front_q <= accept ? FrNorm : FrIdle;
         default: front_q <= FrIdle;
       endcase
       if (handoff) b_valid_q <= 1'b1;
@@ -310,8 +316,7 @@ module fxr_interp #(
 
   // Datapath registers (no reset: qualified by front_q / b_valid_q).
   always_ff @(posedge clk_i) begin
-    unique case (front_q)
-      FrIdle: if (in_valid_i) begin
+    if (accept) begin
         f_prim_q <= in_i.prim;
         f_y_q    <= in_y;
         f_x0_q   <= in_x0;
@@ -326,7 +331,8 @@ module fxr_interp #(
         f_rem_q[0] <= z_start[ZPB-1] ? QB'(-z_start) : QB'(z_start);
         f_neg_q[1] <= zdx[ZPB-1];
         f_rem_q[1] <= zdx[ZPB-1] ? QB'(-zdx) : QB'(zdx);
-      end
+    end
+    unique case (front_q)
       FrNorm: for (int d = 0; d < 2; d++) begin
         f_quo_q[d] <= '0;
         if (n_any[d] && nz_msb[d] >= nd_msb) begin

@@ -27,6 +27,10 @@ struct DepthBufferView {
   int x0 = 0, y0 = 0;  // window coordinates of codes[0]
 };
 
+// Samples in flight in rtl/fxr_depth.sv (its parameter QueueDepth: a micro-architecture choice,
+// docs/rtl.md).
+inline constexpr int kDepthQueueDepth = 8;
+
 class DepthStage {
  public:
   static constexpr const char* kName = "depth";
@@ -51,7 +55,8 @@ class DepthStage {
     return pass;
   }
 
-  // Planned RTL: one depth_bits comparator, a read-modify-write port of the buffer.
+  // rtl/fxr_depth.sv: one depth_bits comparator, an in-order queue of kDepthQueueDepth samples
+  // behind the buffer's memory port (depth.cpp; docs/rtl.md, "fxr_depth").
   static StageCost cost(const Config& cfg);
 
  private:

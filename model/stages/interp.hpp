@@ -64,6 +64,10 @@ struct DepthStepper {
 
 // ---- the stage ------------------------------------------------------------------------------
 
+// Quotient bits per clock of the span-start divisions in rtl/fxr_interp.sv (its parameter
+// DivStepsPerClock; a micro-architecture choice, not a configuration field: docs/rtl.md).
+inline constexpr int kInterpDivStepsPerClock = 8;
+
 // Stage 7 output: the planes at one pixel centre — the depth code (raster.depth_bits(), rounded
 // once, RNE), the 1/w sum D = den·2^den_exp and the v/w sums N_m = num[m]·2^num_exp[m] (exact,
 // signed interp_plane_bits), the exponents being the triangle's block exponents.
@@ -129,8 +133,8 @@ class InterpStage {
     }
   }
 
-  // Planned RTL: per plane one interp_plane_bits accumulator (depth: a quotient / remainder
-  // DDA of depth_plane_bits), one pixel per clock.
+  // rtl/fxr_interp.sv: the planes evaluated at the span start, the depth quotient / remainder
+  // by a sequential divider, then one pixel per clock (interp.cpp; docs/rtl.md, "fxr_interp").
   static StageCost cost(const Config& cfg);
 
  private:
