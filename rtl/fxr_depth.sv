@@ -22,8 +22,12 @@
 //   mem_req_addr_o                  pixel index (y − viewport_y)·viewport_w + (x − viewport_x)
 //   mem_req_wdata_o                 the depth code to write
 //   mem_rsp_valid_i, mem_rsp_rdata_i  read response (always accepted: every read has its slot)
+//   mem_wr_valid_o / _ready_i,     the write channel when WritePort = 1 (then the request port
+//   mem_wr_addr_o, mem_wr_data_o   carries only reads); unused (valid 0) when WritePort = 0
 // The memory performs requests in the order it accepts them and returns read responses in that
-// order, after any latency (at least one clock); writes have no response.
+// order, after any latency (at least one clock); writes have no response. With the write
+// channel, a read accepted after a write was accepted must see it (a read and a write accepted
+// in the same clock never share an address: the hazard stall below).
 //
 // Algorithm. An in-order queue of QueueDepth samples: a sample enters when its read request is
 // accepted (test on) and leaves from the head once its stored code has come back: compare,
@@ -34,12 +38,14 @@
 // the model's sequential ones whatever the latency.
 //
 // Timing: one sample per clock while the queue covers the memory's round trip (QueueDepth ≥
-// latency + 2) and no hazard; a write and a read share the port (the write first), so with the
-// write mask on, each passing sample costs one more port slot.
+// latency + 2) and no hazard; with WritePort = 0 a write and a read share the port (the write
+// first), so with the write mask on, each passing sample costs one more port slot; with
+// WritePort = 1 reads and writes each have their own channel.
 module fxr_depth #(
   parameter int WindowIntBits = fxr_config_pkg::RasterWindowIntBits,
   parameter int DepthFormat   = fxr_config_pkg::RasterDepthFormat,  // raster_depth_format_e
   parameter int QueueDepth    = 8,  // samples in flight (a power of two; kDepthQueueDepth of the model's cost)
+  parameter bit WritePort     = 1'b0,  // 1: writes on the mem_wr_* channel (a second memory port)
   // derived (model/unit/io.hpp, model/stages/setup.hpp)
   localparam int Db        = DepthFormat == fxr_config_pkg::RasterDepthFormatD24 ? 24 : 16,
   localparam int PB        = WindowIntBits,                 // pixel index (signed)
@@ -69,7 +75,11 @@ module fxr_depth #(
   output logic [AddrBits-1:0]           mem_req_addr_o,
   output logic [Db-1:0]                 mem_req_wdata_o,
   input  logic                          mem_rsp_valid_i,
-  input  logic [Db-1:0]                 mem_rsp_rdata_i
+  input  logic [Db-1:0]                 mem_rsp_rdata_i,
+  output logic                          mem_wr_valid_o,
+  input  logic                          mem_wr_ready_i,
+  output logic [AddrBits-1:0]           mem_wr_addr_o,
+  output logic [Db-1:0]                 mem_wr_data_o
 );
 
   if (QueueDepth < 2 || (1 << QB) != QueueDepth) begin : g_param_check
@@ -135,20 +145,26 @@ module fxr_depth #(
   assign of_room = of_count_q != 2'd2;
 
   // ---- the memory port: the head's write first, then the input's read -----------------------
-  logic wr_req, rd_req, retire, in_fire, rsp_take, out_fire;
+  // (WritePort: the write on its own channel, the request port for reads only.)
+  logic wr_req, rd_req, retire, in_fire, rsp_take, out_fire, port_wr, wr_ready;
   always_comb begin
-    wr_req  = h_ready & h_write & of_room;
-    rd_req  = in_valid_i & depth_test_i & ~full & ~hazard & ~wr_req;
-    retire  = h_ready & (~h_pass | of_room) & (~h_write | mem_req_ready_i);
-    in_ready_o = ~full & ~hazard & (~depth_test_i | (~wr_req & mem_req_ready_i));
-    in_fire = in_valid_i & in_ready_o;
+    wr_req   = h_ready & h_write & of_room;
+    port_wr  = wr_req & ~WritePort;                 // the write holds the request port
+    wr_ready = WritePort ? mem_wr_ready_i : mem_req_ready_i;
+    rd_req   = in_valid_i & depth_test_i & ~full & ~hazard & ~port_wr;
+    retire   = h_ready & (~h_pass | of_room) & (~h_write | wr_ready);
+    in_ready_o = ~full & ~hazard & (~depth_test_i | (~port_wr & mem_req_ready_i));
+    in_fire  = in_valid_i & in_ready_o;
     rsp_take = mem_rsp_valid_i;
     out_fire = out_valid_o & out_ready_i;
   end
-  assign mem_req_valid_o = wr_req | rd_req;
-  assign mem_req_write_o = wr_req;
-  assign mem_req_addr_o  = wr_req ? q_addr_q[head_q] : in_addr;
+  assign mem_req_valid_o = port_wr | rd_req;
+  assign mem_req_write_o = port_wr;
+  assign mem_req_addr_o  = port_wr ? q_addr_q[head_q] : in_addr;
   assign mem_req_wdata_o = h_in;
+  assign mem_wr_valid_o  = wr_req & WritePort;
+  assign mem_wr_addr_o   = q_addr_q[head_q];
+  assign mem_wr_data_o   = h_in;
   assign out_valid_o     = of_count_q != 2'd0;
   assign out_o           = of_rec_q[of_rd_q];
 

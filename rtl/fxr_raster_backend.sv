@@ -256,7 +256,14 @@ module fxr_raster_backend #(
     .mem_req_addr_o (mem_req_addr_o),
     .mem_req_wdata_o(mem_req_wdata_o),
     .mem_rsp_valid_i(mem_rsp_valid_i),
-    .mem_rsp_rdata_i(mem_rsp_rdata_i)
+    .mem_rsp_rdata_i(mem_rsp_rdata_i),
+    // fxr_depth's separate write channel (WritePort = 1) is not used here: writes share mem_req_*
+    /* verilator lint_off PINCONNECTEMPTY */
+    .mem_wr_valid_o (),
+    .mem_wr_ready_i (1'b0),
+    .mem_wr_addr_o  (),
+    .mem_wr_data_o  ()
+    /* verilator lint_on PINCONNECTEMPTY */
   );
 
   // ---- counters -------------------------------------------------------------------------------

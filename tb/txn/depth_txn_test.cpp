@@ -2,7 +2,8 @@
 // depth buffer behind its memory port (tb/depth_mem.hpp): the committed dump of
 // scenes/transactions.json and the default scene (each re-stepped from a cleared buffer, as the
 // dump's depth.out was made), the passing samples bit-identical and in order with the model's
-// depth.out under random input gaps, output back-pressure, memory latency and request stalls,
+// depth.out under random input gaps, output back-pressure, memory latency and request stalls
+// (fxr_depth as shipped, and with its separate write channel: tb/txn/fxr_depth_wp.sv),
 // and the final buffer equal to the model's (fxr::DepthStage run here on depth.in). Directed
 // cases: every depth function with the write mask on and off, the test off, and fragments to one
 // pixel back to back (the read-after-write hazard), expected values from the functions'
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Vfxr_depth.h"
+#include "Vfxr_depth_wp.h"
 #include "depth_mem.hpp"
 #include "model/stages/depth.hpp"
 #include "txn_harness.hpp"
@@ -54,11 +56,12 @@ State read_state(const std::string& dir) {
 
 uint32_t max_code(const fxr::Config& cfg) { return (uint32_t)((1ull << cfg.raster.depth_bits()) - 1); }
 
-// The hook: draw state on the DUT's state inputs, the memory on its port.
-TxnHook<Vfxr_depth> hook_for(const State& s, DepthMem& mem) {
-  TxnHook<Vfxr_depth> h;
+// The hook: draw state on the DUT's state inputs, the memory on its port(s).
+template <class Dut>
+TxnHook<Dut> hook_for(const State& s, DepthMem& mem) {
+  TxnHook<Dut> h;
   h.reset = [&mem] { mem.reset(); };
-  h.drive = [s, &mem](Vfxr_depth& d) {
+  h.drive = [s, &mem](Dut& d) {
     d.depth_func_i = (uint8_t)s.func;
     d.depth_test_i = s.test;
     d.depth_write_i = s.write;
@@ -67,7 +70,7 @@ TxnHook<Vfxr_depth> hook_for(const State& s, DepthMem& mem) {
     d.viewport_w_i = (uint32_t)s.vw;
     mem.drive(d);
   };
-  h.observe = [&mem](Vfxr_depth& d) { mem.observe(d); };
+  h.observe = [&mem](Dut& d) { mem.observe(d); };
   return h;
 }
 
@@ -113,6 +116,7 @@ std::vector<uint32_t> model_buffer(const SceneStageVectors& v, const State& s) {
   return buf;
 }
 
+template <class Dut>
 void run_dump(const std::string& dir, const std::string& name, bool figures) {
   const SceneStageVectors v = fxr::load_scene_stage(dir, "depth");
   const State s = read_state(dir);
@@ -128,10 +132,11 @@ void run_dump(const std::string& dir, const std::string& name, bool figures) {
     mo.min_latency = k.lat_min;
     mo.max_latency = k.lat_max;
     mo.req_stall_pct = k.req_stall;
+    mo.wr_stall_pct = k.req_stall;
     DepthMem mem((size_t)s.vw * (size_t)s.vh, max_code(v.cfg), mo);
-    const TxnHook<Vfxr_depth> h = hook_for(s, mem);
+    const TxnHook<Dut> h = hook_for<Dut>(s, mem);
     const TxnResult r =
-        fxr::tb::run_txn<Vfxr_depth>(v, nullptr, opts("depth_" + name + "_" + std::to_string(k.seed), k.seed, k.gap, k.stall), &h);
+        fxr::tb::run_txn<Dut>(v, nullptr, opts("depth_" + name + "_" + std::to_string(k.seed), k.seed, k.gap, k.stall), &h);
     EXPECT_TRUE(r.passed()) << "seed " << k.seed;
     EXPECT_EQ(r.outputs, v.out.rows);
     EXPECT_EQ(r.inputs, v.in.rows);
@@ -147,8 +152,11 @@ void run_dump(const std::string& dir, const std::string& name, bool figures) {
   }
 }
 
-TEST(DepthTxn, CommittedDumpMatchesTheModel) { run_dump(kCommitted, "committed", false); }
-TEST(DepthTxn, DefaultSceneMatchesTheModel) { run_dump(kDefault, "default", true); }
+TEST(DepthTxn, CommittedDumpMatchesTheModel) { run_dump<Vfxr_depth>(kCommitted, "committed", false); }
+TEST(DepthTxn, DefaultSceneMatchesTheModel) { run_dump<Vfxr_depth>(kDefault, "default", true); }
+// The same with the separate write channel (WritePort = 1).
+TEST(DepthTxn, WritePortCommittedDumpMatchesTheModel) { run_dump<Vfxr_depth_wp>(kCommitted, "wp_committed", false); }
+TEST(DepthTxn, WritePortDefaultSceneMatchesTheModel) { run_dump<Vfxr_depth_wp>(kDefault, "wp_default", true); }
 
 // ---- directed cases ---------------------------------------------------------------------------
 
@@ -167,6 +175,7 @@ struct Frag {
 
 // Builds depth.in / depth.out for `frags` with the committed dump's layouts and the expected
 // outcome computed here, runs them, and checks the outputs and the final buffer.
+template <class Dut>
 void run_directed(const std::string& name, const State& s, const std::vector<Frag>& frags, unsigned lat_max,
                   uint64_t* clocks = nullptr) {
   const SceneStageVectors base = fxr::load_scene_stage(kCommitted, "depth");
@@ -209,9 +218,10 @@ void run_directed(const std::string& name, const State& s, const std::vector<Fra
     mo.seed = seed;
     mo.max_latency = lat_max;
     mo.req_stall_pct = seed == 2 ? 30 : 0;
+    mo.wr_stall_pct = seed == 2 ? 30 : 0;
     DepthMem mem(buf.size(), clear, mo);
-    const TxnHook<Vfxr_depth> h = hook_for(s, mem);
-    const TxnResult r = fxr::tb::run_txn<Vfxr_depth>(v, nullptr, opts("depth_" + name, seed, seed == 2 ? 30 : 0,
+    const TxnHook<Dut> h = hook_for<Dut>(s, mem);
+    const TxnResult r = fxr::tb::run_txn<Dut>(v, nullptr, opts("depth_" + name, seed, seed == 2 ? 30 : 0,
                                                                       seed == 2 ? 30 : 0), &h);
     EXPECT_TRUE(r.passed()) << name << " seed " << seed;
     EXPECT_EQ(r.outputs, v.out.rows) << name;
@@ -229,7 +239,8 @@ void run_directed(const std::string& name, const State& s, const std::vector<Fra
 // One pixel hit repeatedly (each fragment back to back with the previous one: the hazard), three
 // other pixels, depths below, equal to and above the stored code, for all eight functions with
 // the mask on and off, and with the test off.
-TEST(DepthTxn, EveryFunctionMaskAndHazard) {
+template <class Dut>
+void every_function(const std::string& prefix) {
   const uint32_t M = (1u << 24) - 1;  // the clear value at the committed dump's d24 (checked below)
   ASSERT_EQ(max_code(fxr::load_scene_stage(kCommitted, "depth").cfg), M);
   State s;
@@ -245,13 +256,15 @@ TEST(DepthTxn, EveryFunctionMaskAndHazard) {
       s.func = func;
       s.test = true;
       s.write = write;
-      run_directed("f" + std::to_string(func) + (write ? "_w" : "_nw"), s, frags, 6);
+      run_directed<Dut>(prefix + "f" + std::to_string(func) + (write ? "_w" : "_nw"), s, frags, 6);
     }
   s.func = 0;  // never — ignored with the test off: everything passes, nothing is read or written
   s.test = false;
   s.write = true;
-  run_directed("test_off", s, frags, 6);
+  run_directed<Dut>(prefix + "test_off", s, frags, 6);
 }
+TEST(DepthTxn, EveryFunctionMaskAndHazard) { every_function<Vfxr_depth>(""); }
+TEST(DepthTxn, WritePortEveryFunctionMaskAndHazard) { every_function<Vfxr_depth_wp>("wp_"); }
 
 // The hazard's cost: 64 fragments on one pixel (each waits for the previous one's write) versus
 // 64 on distinct pixels, memory latency 1.
@@ -266,11 +279,17 @@ TEST(DepthTxn, SamePixelBackToBackStallsAndStaysExact) {
     distinct.push_back({i % 16, i / 16, (uint32_t)(1000 - (i % 2 ? 0 : i))});
   }
   uint64_t c_same = 0, c_distinct = 0;
-  run_directed("same_pixel", s, same, 1, &c_same);
-  run_directed("distinct_pixels", s, distinct, 1, &c_distinct);
+  run_directed<Vfxr_depth>("same_pixel", s, same, 1, &c_same);
+  run_directed<Vfxr_depth>("distinct_pixels", s, distinct, 1, &c_distinct);
   std::printf("depth hazard: 64 fragments on one pixel %llu clocks, on 64 pixels %llu clocks (latency 1)\n",
               (unsigned long long)c_same, (unsigned long long)c_distinct);
   EXPECT_GT(c_same, c_distinct);
+  uint64_t w_same = 0, w_distinct = 0;
+  run_directed<Vfxr_depth_wp>("wp_same_pixel", s, same, 1, &w_same);
+  run_directed<Vfxr_depth_wp>("wp_distinct_pixels", s, distinct, 1, &w_distinct);
+  std::printf("depth hazard, write channel: 64 fragments on one pixel %llu clocks, on 64 pixels %llu clocks\n",
+              (unsigned long long)w_same, (unsigned long long)w_distinct);
+  EXPECT_GT(w_same, w_distinct);
 }
 
 }  // namespace
