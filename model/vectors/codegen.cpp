@@ -2,6 +2,7 @@
 #include "model/vectors/codegen.hpp"
 
 #include "model/config/param.hpp"
+#include "model/stages/input.hpp"
 #include "model/stages/interp.hpp"
 #include "model/stages/line_setup.hpp"
 #include "model/stages/setup.hpp"
@@ -149,6 +150,8 @@ void emit_sv_record_package(std::ostream& os, const Config& cfg, int num_varying
         "package fxr_rec_pkg;\n"
         "  /* verilator lint_off UNUSEDPARAM */  // a unit uses the records it has ports of\n";
   os << "  localparam int NumVaryings = " << num_varyings << ";\n";
+  emit_record_struct<InputTriangle>(os, "input_triangle", s);
+  emit_record_struct<ExactTriangle>(os, "exact_triangle", s);
   emit_record_struct<SetupTriangle>(os, "setup_triangle", s);
   emit_record_struct<TriangleEquations>(os, "triangle_equations", s);
   emit_record_struct<Span>(os, "span", s);
