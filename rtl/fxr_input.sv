@@ -44,21 +44,22 @@ module fxr_input (
   output logic                         rej_inf_o,
   output logic                         var_replaced_o
 );
-  // IEEE-754 binary32: the word width comes from the record, the exponent width and bias are
-  // the format's (docs/references.md, IEEE 754-2008 §3.4).
-  localparam int F32Bits = $bits(in_i.v0_x);
+  // IEEE-754 binary32: the word width comes from the record package, the exponent width and
+  // bias are the format's (docs/references.md, IEEE 754). The widths are fxr_rec_pkg's
+  // constants, not $bits() of struct members (Yosys 0.23 gives the whole struct's width).
+  localparam int F32Bits = fxr_rec_pkg::F32Bits;
   localparam int F32ExpBits = 8;
   localparam int F32FracBits = F32Bits - 1 - F32ExpBits;
   localparam int F32ExpBias = (1 << (F32ExpBits - 1)) - 1;
   localparam int NumVaryings = fxr_rec_pkg::NumVaryings;
   localparam int WordsPerVertex = 4 + NumVaryings;  // x, y, z, w, varyings
   localparam int NumWords = 3 * WordsPerVertex;
-  localparam int PrimBits = $bits(in_i.prim);
-  localparam int SigBits = $bits(out_o.v0_x_sig);
-  localparam int ExpBits = $bits(out_o.v0_x_exp);
+  localparam int PrimBits = fxr_rec_pkg::PrimIdBits;
+  localparam int SigBits = fxr_rec_pkg::ClipVertexSigBits;
+  localparam int ExpBits = fxr_rec_pkg::FxExpBits;
   localparam int ValBits = 1 + SigBits + ExpBits;  // _neg, _sig, _exp
-  localparam int InBits = $bits(in_i);
-  localparam int OutBits = $bits(out_o);
+  localparam int InBits = fxr_rec_pkg::InputTriangleBits;
+  localparam int OutBits = fxr_rec_pkg::ExactTriangleBits;
 
   // The exponent of a zero / denormal word and the offset of a normal one.
   localparam logic signed [ExpBits-1:0] ExpSub = ExpBits'(1 - F32ExpBias - F32FracBits);

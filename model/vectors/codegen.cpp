@@ -150,6 +150,13 @@ void emit_sv_record_package(std::ostream& os, const Config& cfg, int num_varying
         "package fxr_rec_pkg;\n"
         "  /* verilator lint_off UNUSEDPARAM */  // a unit uses the records it has ports of\n";
   os << "  localparam int NumVaryings = " << num_varyings << ";\n";
+  // Widths of record members the units need as constants (Yosys 0.23 evaluates $bits() of a
+  // struct member as the whole struct's width).
+  os << "  localparam int PrimIdBits = " << kPrimIdBits << ";  // prim\n";
+  os << "  localparam int F32Bits = " << kF32Bits << ";  // a float32 word of input_triangle_t\n";
+  os << "  localparam int FxExpBits = " << fx_exp_field_bits(cfg) << ";  // every _exp member (signed)\n";
+  os << "  localparam int ClipVertexSigBits = " << clip_vertex_sig_bits(cfg)
+     << ";  // the _sig members of exact_triangle_t\n";
   emit_record_struct<InputTriangle>(os, "input_triangle", s);
   emit_record_struct<ExactTriangle>(os, "exact_triangle", s);
   emit_record_struct<SetupTriangle>(os, "setup_triangle", s);
