@@ -13,7 +13,9 @@
 //   depth_write_i
 //   out_valid_o / out_ready_i,      fxr_rec_pkg::plane_sample_t: the fragments that pass (the
 //   out_o                           model's depth.out: prim, x, y, depth code, den / num sums)
-//   mem_*                           fxr_depth's depth-buffer port (request / response, any latency)
+//   mem_req_*, mem_rsp_*            fxr_depth's depth-buffer port (request / response, any latency)
+//   mem_wr_*                        its write channel (DepthWritePort = 1: writes here, reads on
+//                                   mem_req_*; 0: unused, mem_wr_valid_o low)
 //   stat_*_o                        counters since reset (StatBits wide, wrapping):
 //     tri_in        triangles accepted
 //     tri_drawn     triangles set up (SetupOutcome::Ok)
@@ -48,6 +50,7 @@ module fxr_raster_backend #(
   parameter int DepthFormat     = fxr_config_pkg::RasterDepthFormat,  // raster_depth_format_e
   parameter int TriFifoDepth    = 4,   // triangles between traversal's input and fxr_interp (power of two, ≥ 2)
   parameter int DepthQueueDepth = 8,   // fxr_depth's samples in flight (power of two)
+  parameter bit DepthWritePort  = 1'b1,  // fxr_depth's WritePort: writes on mem_wr_* (0: on mem_req_*)
   parameter int StatBits        = 32,  // counter registers (wrap at 2^StatBits)
   parameter int InterpDivSteps  = 4,   // fxr_interp's DivStepsPerClock (quotient bits per clock)
   // derived (model/unit/io.hpp, model/stages/setup.hpp)
@@ -86,6 +89,10 @@ module fxr_raster_backend #(
   output logic [Db-1:0]                 mem_req_wdata_o,
   input  logic                          mem_rsp_valid_i,
   input  logic [Db-1:0]                 mem_rsp_rdata_i,
+  output logic                          mem_wr_valid_o,
+  input  logic                          mem_wr_ready_i,
+  output logic [AddrBits-1:0]           mem_wr_addr_o,
+  output logic [Db-1:0]                 mem_wr_data_o,
   output logic [StatBits-1:0]           stat_tri_in_o,
   output logic [StatBits-1:0]           stat_tri_drawn_o,
   output logic [StatBits-1:0]           stat_tri_zero_area_o,
@@ -235,7 +242,8 @@ module fxr_raster_backend #(
   // ---- stage 8: depth -----------------------------------------------------------------------------
   logic dp_in_ready;
   assign ip_out_ready = dp_in_ready;
-  fxr_depth #(.WindowIntBits(WindowIntBits), .DepthFormat(DepthFormat), .QueueDepth(DepthQueueDepth)) u_depth (
+  fxr_depth #(.WindowIntBits(WindowIntBits), .DepthFormat(DepthFormat), .QueueDepth(DepthQueueDepth),
+             .WritePort(DepthWritePort)) u_depth (
     .clk_i          (clk_i),
     .rst_ni         (rst_ni),
     .depth_func_i   (depth_func_i),
@@ -257,13 +265,10 @@ module fxr_raster_backend #(
     .mem_req_wdata_o(mem_req_wdata_o),
     .mem_rsp_valid_i(mem_rsp_valid_i),
     .mem_rsp_rdata_i(mem_rsp_rdata_i),
-    // fxr_depth's separate write channel (WritePort = 1) is not used here: writes share mem_req_*
-    /* verilator lint_off PINCONNECTEMPTY */
-    .mem_wr_valid_o (),
-    .mem_wr_ready_i (1'b0),
-    .mem_wr_addr_o  (),
-    .mem_wr_data_o  ()
-    /* verilator lint_on PINCONNECTEMPTY */
+    .mem_wr_valid_o (mem_wr_valid_o),
+    .mem_wr_ready_i (mem_wr_ready_i),
+    .mem_wr_addr_o  (mem_wr_addr_o),
+    .mem_wr_data_o  (mem_wr_data_o)
   );
 
   // ---- counters -------------------------------------------------------------------------------

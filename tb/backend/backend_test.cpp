@@ -201,6 +201,7 @@ RtlRun run_rtl(const Draw& d, const SceneStageVectors& v, const Handshake& h, co
   mo.min_latency = h.lat_min;
   mo.max_latency = h.lat_max;
   mo.req_stall_pct = h.req_stall;
+  mo.wr_stall_pct = h.req_stall;  // the write channel (DepthWritePort)
   DepthMem mem((size_t)d.st.viewport_w * (size_t)d.st.viewport_h, d.clear, mo);
   Stats& s = out.stats;
   TxnHook<Dut> hook;
