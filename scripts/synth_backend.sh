@@ -29,9 +29,9 @@ for top in "${tops[@]}"; do
   fi
   secs=$(( $(date +%s) - start ))
   # the last statistics (synth prints its own before abc): LUTs and every flip-flop cell type
-  last=$(awk '/Printing statistics/ {buf=""} {buf=buf $0 "\n"} END {printf "%s", buf}' "$log")
-  lut=$(printf '%b' "$last" | grep -E '^\s+\$lut\s' | tail -1 | awk '{print $2}')
-  ff=$(printf '%b' "$last" | grep -E '^\s+\$_(S)?DFF' | awk '{s+=$2} END {print s+0}')
+  last() { awk '/Printing statistics/ {buf=""} {buf=buf $0 "\n"} END {printf "%s", buf}' "$log"; }
+  lut=$(last | grep -E '^\s+\$lut\s' | tail -1 | awk '{print $2}')
+  ff=$(last | grep -E '^\s+\$_(S)?DFF' | awk '{s+=$2} END {print s+0}')
   depth=$(grep -Eo 'Longest topological path in .* \(length=[0-9]+\)' "$log" | grep -Eo '[0-9]+\)$' | tr -d ')')
   echo "$top lut4=${lut:-?} ff=$ff depth=${depth:-?} seconds=$secs"
 done
