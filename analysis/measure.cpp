@@ -255,6 +255,19 @@ std::vector<DivConfig> div_sweep_configs() {
     c.nr_frac_bits = p[3];
     v.push_back(c);
   }
+  // shared_recip (one reciprocal per pixel, one multiply per varying, rounded once): the same
+  // reciprocal core shapes, and wider iterates (the error bound is 0.5 + 2^qb·δ).
+  const int sr[][4] = {{8, 8, 2, 28}, {8, 8, 2, 26}, {8, 8, 2, 30}, {8, 8, 2, 32}, {6, 8, 2, 28},
+                       {5, 7, 2, 28}, {12, 14, 1, 28}, {13, 15, 1, 30}, {8, 8, 1, 28}, {4, 4, 3, 30}};
+  for (const auto& p : sr) {
+    DivConfig c = base;
+    c.algorithm = DivAlgorithm::SharedRecip;
+    c.seed_index_bits = p[0];
+    c.seed_bits = p[1];
+    c.nr_steps = p[2];
+    c.nr_frac_bits = p[3];
+    v.push_back(c);
+  }
   return v;
 }
 
@@ -262,7 +275,8 @@ std::string div_label(const DivConfig& c) {
   if (c.algorithm == DivAlgorithm::Radix2)
     return "radix2 k=" + std::to_string(c.bits_per_stage) +
            (c.schedule == DivSchedule::Iterative ? " iter" : " pipe");
-  return "recip_mul " + std::to_string(1 << c.seed_index_bits) + "x" + std::to_string(c.seed_bits) +
+  return std::string(c.algorithm == DivAlgorithm::SharedRecip ? "shared_recip " : "recip_mul ") +
+         std::to_string(1 << c.seed_index_bits) + "x" + std::to_string(c.seed_bits) +
          " nr" + std::to_string(c.nr_steps) + " f" + std::to_string(c.nr_frac_bits);
 }
 

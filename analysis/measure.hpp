@@ -44,7 +44,8 @@ ErrorStats measure(const DivConfig& cfg, const MeasureOptions& opt);
 // recip: the anchor designs of docs/arith.md with a near-ideal 40-bit datapath and the
 // neighbourhood of the default, each with and without correction.
 std::vector<RecipConfig> recip_sweep_configs();
-// div: radix2 schedules and digits per stage; recip_mul seeds including ones too coarse.
+// div: radix2 schedules and digits per stage; recip_mul seeds including ones too coarse;
+// shared_recip on the same reciprocal shapes and wider iterates.
 std::vector<DivConfig> div_sweep_configs();
 
 // Short labels for reports, e.g. "64x6+2NR f26 rem", "radix2 k=1 pipe", "recip_mul 256x8 nr2 f28".

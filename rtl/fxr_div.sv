@@ -1,7 +1,7 @@
 // fxr_div: per-pixel significand divider, stage 9 (v = (v/w) / (1/w)).
 // Model: fxr::div_sig (model/arith/div.hpp); docs/arith.md "# Divider".
 //
-// Function (every algorithm, round to nearest even):
+// Function (every algorithm, round to nearest even; shared_recip rounds an approximate product):
 //   num in [2^(NumBits-1), 2^NumBits), den in [2^(DenBits-1), 2^DenBits) (msb set):
 //   (num*2^-(NumBits-1)) / (den*2^-(DenBits-1)) = sig*2^-(QuotBits-1)*2^exp_adj,
 //   sig in [2^(QuotBits-1), 2^QuotBits); exp_adj in {-1, 0, +1} (+1 only when rounding carries out).
@@ -22,6 +22,8 @@
 //   radix2: ceil((QuotBits - 1) / BitsPerStage) + 2 (25 at the default configuration);
 //   II 1 pipelined (DivSchedulePipelined), ceil((QuotBits - 1) / BitsPerStage) + 1 iterative.
 //   recip_mul: 2 * NrSteps + 4 (8 at NrSteps 2), II 1 (always pipelined).
+//   shared_recip: 2 * NrSteps + 3 (7 at NrSteps 2), II 1 (fxr_div_shared_recip, one lane; not
+//   correctly rounded: within fxr::div_bound()).
 module fxr_div #(
   parameter int Algorithm      = fxr_config_pkg::DivAlgorithm,  // fxr_config_pkg::div_algorithm_e
   parameter int NumBits        = fxr_config_pkg::DivNumBits,
@@ -54,6 +56,29 @@ module fxr_div #(
       .BitsPerStage(BitsPerStage),
       .Schedule    (Schedule)
     ) u_radix2 (
+      .clk_i        (clk_i),
+      .rst_ni       (rst_ni),
+      .in_valid_i   (in_valid_i),
+      .in_ready_o   (in_ready_o),
+      .in_num_i     (in_num_i),
+      .in_den_i     (in_den_i),
+      .out_valid_o  (out_valid_o),
+      .out_ready_i  (out_ready_i),
+      .out_sig_o    (out_sig_o),
+      .out_exp_adj_o(out_exp_adj_o),
+      .out_dbz_o    (out_dbz_o)
+    );
+  end else if (Algorithm == fxr_config_pkg::DivAlgorithmSharedRecip) begin : gen_shared_recip
+    fxr_div_shared_recip #(
+      .NumBits      (NumBits),
+      .DenBits      (DenBits),
+      .QuotBits     (QuotBits),
+      .SeedIndexBits(SeedIndexBits),
+      .SeedBits     (SeedBits),
+      .NrSteps      (NrSteps),
+      .NrFracBits   (NrFracBits),
+      .Lanes        (1)
+    ) u_shared_recip (
       .clk_i        (clk_i),
       .rst_ni       (rst_ni),
       .in_valid_i   (in_valid_i),

@@ -2,6 +2,8 @@
 #include "model/arith/div.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -181,6 +183,78 @@ DivSig div_sig_recip_mul(const DivConfig& c, uint64_t n, uint64_t d) {
   return round_rne(c, (u128)q, (u128)r, x.b, x.k);
 }
 
+// ---- shared reciprocal, one multiply, one rounding ------------------------------------------
+
+uint64_t div_recip(const DivConfig& c, uint64_t d) {
+  if (d == 0 || (d >> (c.den_bits - 1)) != 1) bad_operand("d", d, c.den_bits);
+  const uint64_t b = d << (div_align_bits(c) - c.den_bits);  // exact
+  // PRECISION LOST inside the core (its truncations): 0 ≤ 1/bn − y after ≥ 1 NR step.
+  return core_cached(c).approx(b);
+}
+
+DivSig div_mul_round(const DivConfig& c, uint64_t n, uint64_t d, uint64_t y) {
+  DivSig s;
+  if (special(c, n, d, &s)) return s;
+  const Aligned x = align(c, n, d);
+  const int qb = c.quot_bits;
+  // P = a'·y·2^(qb−1)/2^(W−1) = prod·2^−qshift: the exact product, rounded once below.
+  const int qshift = div_align_bits(c) + c.nr_frac_bits - qb;
+  const u128 prod = x.a1 * (u128)y;  // ≤ (W+1) + F ≤ 121 bits
+  u128 q;
+  bool up = false;
+  if (qshift > 0) {
+    // PRECISION LOST: the qshift low product bits, by the one RNE of the unit.
+    q = prod >> qshift;
+    up = rne_round_up<u128>(q, prod & ((((u128)1) << qshift) - 1), ((u128)1) << qshift);
+  } else {
+    q = prod << -qshift;  // exact
+  }
+  q += up ? 1 : 0;
+  // Clamps into [2^(qb−1), 2^qb]: only an inaccurate reciprocal reaches them (div_bound).
+  const u128 lo = pow2(qb - 1), hi = pow2(qb);
+  if (q < lo) q = lo;
+  if (q > hi) q = hi;
+  if (q == hi) return {(uint64_t)lo, 1 - x.k};  // 2^qb: renormalised
+  return {(uint64_t)q, -x.k};
+}
+
+DivSig div_sig_shared_recip(const DivConfig& c, uint64_t n, uint64_t d) {
+  DivSig s;
+  if (special(c, n, d, &s)) return s;
+  return div_mul_round(c, n, d, div_recip(c, d));
+}
+
+DivBound div_bound(const DivConfig& c) {
+  DivBound r;
+  const std::vector<uint64_t> table = recip_core_seed_table(c.seed_index_bits, c.seed_bits);
+  const SeedError se = recip_core_seed_error(c.seed_index_bits, c.seed_bits, table);
+  r.seed_rel_err = std::ldexp((double)se.num, -se.log2_den);
+  // δ = 1 − bn·y. One step (docs/arith.md, reciprocal unit): e' = e² + (1 − e)·δt + bn·δy with
+  // 0 < δt ≤ 2^−F, 0 ≤ δy < 2^−F, bn < 2, so 0 ≤ e' ≤ e² + (1 + |e|)·2^−F + 2·2^−F.
+  const double ulp_f = std::ldexp(1.0, -c.nr_frac_bits);
+  double e = r.seed_rel_err;
+  if (c.nr_steps == 0) {
+    if (c.seed_bits + 1 > c.nr_frac_bits) e += 2 * ulp_f;  // y0 truncated to F bits: < 2^−F·bn
+  } else {
+    for (int step = 0; step < c.nr_steps; ++step) e = e * e + (1 + e) * ulp_f + 2 * ulp_f;
+  }
+  r.recip_rel_err = e * (1 + 1e-9);
+  // X·δ < 2^qb·δ ulps between the exact quotient X and the product before its rounding.
+  const double spread = std::ldexp(r.recip_rel_err, c.quot_bits);
+  switch (c.algorithm) {
+    case DivAlgorithm::Radix2:
+      r.error_bound_ulp = 0.5;
+      break;
+    case DivAlgorithm::RecipMul:
+      r.error_bound_ulp = spread < 1 ? 0.5 : std::numeric_limits<double>::infinity();
+      break;
+    case DivAlgorithm::SharedRecip:
+      r.error_bound_ulp = 0.5 + spread;
+      break;
+  }
+  return r;
+}
+
 // ---- dispatch --------------------------------------------------------------------------------
 
 DivSig div_sig(const DivConfig& c, uint64_t n, uint64_t d) {
@@ -191,6 +265,8 @@ DivSig div_sig(const DivConfig& c, uint64_t n, uint64_t d) {
       return div_sig_exact(c, n, d);
     case DivAlgorithm::RecipMul:
       return div_sig_recip_mul(c, n, d);
+    case DivAlgorithm::SharedRecip:
+      return div_sig_shared_recip(c, n, d);
   }
   return div_sig_exact(c, n, d);
 }
@@ -252,6 +328,20 @@ StageCost div_cost(const DivConfig& c) {
       for (int st = 0; st <= stages; ++st)
         k.ff_bits += rb + w + std::min(qb, 1 + st * c.bits_per_stage) + 4;
     }
+  } else if (c.algorithm == DivAlgorithm::SharedRecip) {
+    const int f = c.nr_frac_bits;
+    // pre (align, compare, seed ROM) → 2 per NR step → a'·y into q and its rounding flags →
+    // RNE, clamps, renormalise into the output (rtl/fxr_div_shared_recip.sv).
+    k.latency = 1 + 2 * c.nr_steps + 1 + 1;
+    k.ii = 1;
+    k.table_bits = (int64_t(1) << c.seed_index_bits) * c.seed_bits;
+    k.multipliers = recip_core_multipliers(div_recip_core_shape(c));
+    k.multipliers.push_back({w + 1, f});  // a'·y, exact
+    k.adder_bits = (w + 1)                // compare a < b
+                   + (qb + 2)             // increment
+                   + 2 * (qb + 2);        // the two clamp comparisons
+    const int stage_ff = (w + 1) + w + f + 2;  // a', b, y, flags
+    k.ff_bits = (k.latency - 1) * stage_ff + (qb + 2 + 1 + 1);
   } else {
     const int f = c.nr_frac_bits;
     // pre (align, compare, seed ROM) → 2 per NR step (b·y → t, y·t → y) → quotient multiply →

@@ -15,6 +15,13 @@
 //              from the corrected remainder. Correctly rounded whenever the truncated quotient
 //              is within one ulp of the true one (measured: analysis/measure.hpp; tested exhaustively at
 //              reduced widths and on 10^7 random at the default widths).
+//   shared_recip the interpolator design most GPUs use: one reciprocal of the denominator per
+//              pixel (the same reciprocal core, seed_* / nr_* fields), shared by every varying of
+//              the pixel, and per varying one multiply a'·y rounded once (RNE) to quot_bits. No
+//              remainder correction: cheaper, NOT correctly rounded; error bound div_bound()
+//              (docs/arith.md "shared_recip"). As a function of one (n, d) pair it is
+//              div_sig_shared_recip = div_mul_round(n, d, div_recip(d)); stage 9
+//              (model/stages/divide.hpp) computes div_recip once per pixel.
 #pragma once
 
 #include <cstdint>
@@ -30,7 +37,7 @@
 
 namespace fxr {
 
-enum class DivAlgorithm : uint8_t { RecipMul, Radix2 };
+enum class DivAlgorithm : uint8_t { RecipMul, Radix2, SharedRecip };
 
 enum class DivSchedule : uint8_t { Pipelined, Iterative };
 
@@ -45,11 +52,12 @@ struct DivConfig {
   int den_bits = 32;
   // Quotient significand width: 24 (float32 significand, RasterConfig::varying_out_sig_bits).
   int quot_bits = 24;
-  // recip_mul: seed table of 2^seed_index_bits entries indexed by the divisor bits after its
+  // recip_mul and shared_recip: seed table of 2^seed_index_bits entries indexed by the divisor bits after its
   // leading one; each entry holds seed_bits bits after the (implicit) leading one.
   int seed_index_bits = 8;
   int seed_bits = 8;
-  // recip_mul: Newton–Raphson steps y ← y·(2 − b·y) and the fraction bits of the iterate y.
+  // recip_mul and shared_recip: Newton–Raphson steps y ← y·(2 − b·y) and the fraction bits of
+  // the iterate y (shared_recip at these defaults: error bound 0.689 ulp, div_bound()).
   // 2 steps from an 8-bit seed give ≈ 2^-34 relative error before truncation; 28 = 24 + 4
   // guard bits keeps the truncation error of y below 2^-26 relative, so the quotient is
   // within one ulp and the remainder step makes it correctly rounded.
@@ -64,14 +72,15 @@ struct DivConfig {
 
   template <class V>
   void visit(V& v) {
-    v.choice("algorithm", algorithm, {"recip_mul", "radix2"}, "divider algorithm");
+    v.choice("algorithm", algorithm, {"recip_mul", "radix2", "shared_recip"},
+             "divider algorithm (shared_recip: one reciprocal per pixel, one multiply per varying, not correctly rounded)");
     v.integer("num_bits", num_bits, 4, 60, "numerator significand bits (msb set)");
     v.integer("den_bits", den_bits, 4, 60, "denominator significand bits (msb set)");
     v.integer("quot_bits", quot_bits, 4, 60, "quotient significand bits (msb set), RNE");
-    v.integer("seed_index_bits", seed_index_bits, 1, 14, "recip_mul: log2 of the seed table entries");
-    v.integer("seed_bits", seed_bits, 1, 20, "recip_mul: seed bits after the leading one");
-    v.integer("nr_steps", nr_steps, 0, 4, "recip_mul: Newton-Raphson steps");
-    v.integer("nr_frac_bits", nr_frac_bits, 4, 60, "recip_mul: fraction bits of the reciprocal iterate");
+    v.integer("seed_index_bits", seed_index_bits, 1, 14, "recip_mul, shared_recip: log2 of the seed table entries");
+    v.integer("seed_bits", seed_bits, 1, 20, "recip_mul, shared_recip: seed bits after the leading one");
+    v.integer("nr_steps", nr_steps, 0, 4, "recip_mul, shared_recip: Newton-Raphson steps");
+    v.integer("nr_frac_bits", nr_frac_bits, 4, 60, "recip_mul, shared_recip: fraction bits of the reciprocal iterate");
     v.integer("bits_per_stage", bits_per_stage, 1, 8, "radix2: quotient bits retired per clock");
     v.choice("schedule", schedule, {"pipelined", "iterative"}, "radix2: pipelined (II 1) or iterative");
   }
@@ -94,7 +103,9 @@ using DivSig = RoundedSig;
 //   even (the only rounding of the unit); when rounding carries out (sig would be 2^qb) the
 //   result renormalises to sig = 2^(qb−1), exp_adj + 1 (so exp_adj ∈ {−1, 0, +1}).
 //   radix2 is correctly rounded for every configuration; recip_mul is when its reciprocal is
-//   accurate enough (the default is; analysis/measure.hpp measures the others).
+//   accurate enough (the default is; analysis/measure.hpp measures the others); shared_recip
+//   is rounded once from an approximate product: within div_bound().error_bound_ulp, not
+//   correctly rounded (exp_adj ∈ {−1, 0, +1} the same way).
 // Special cases (the RTL does the same): d == 0 → sig = 2^qb − 1 (saturated), exp_adj = 0
 //   (the RTL raises out_dbz_o; divide() reports it); otherwise n == 0 → sig = 0, exp_adj = 0.
 //   Operands with bits above their width or a clear msb are outside the contract: the model
@@ -111,7 +122,37 @@ DivSig div_sig_radix2_steps(const DivConfig& c, uint64_t n, uint64_t d);
 // Step-by-step reciprocal-multiply with remainder correction, as the RTL computes it.
 DivSig div_sig_recip_mul(const DivConfig& c, uint64_t n, uint64_t d);
 
-// The reciprocal core of recip_mul: x_bits = div_align_bits, seed_frac_bits = seed_bits.
+// shared_recip, the per-pixel half: Y, the reciprocal core's approximation of 1/bn at
+//   nr_frac_bits fraction bits (y = Y·2^−F), bn = b·2^−(W−1) ∈ [1, 2) the aligned divisor
+//   b = d·2^(W−db). d must be a den_bits significand with its msb set (else invalid_argument).
+uint64_t div_recip(const DivConfig& c, uint64_t d);
+// shared_recip, the per-varying half: with k = [a < b], a' = a·2^k (as every algorithm), the
+//   exact product P = a'·y·2^(qb−1)/2^(W−1) rounded once (RNE) at the ulp of the exact
+//   quotient's binade: q = RNE(P), then sig = q, exp_adj = −k; q = 2^qb renormalises
+//   (sig = 2^(qb−1), exp_adj + 1). Clamps (reached only when the reciprocal is off by more than
+//   the bound allows, e.g. nr_steps 0): q < 2^(qb−1) → 2^(qb−1); q > 2^qb → 2^qb. Special
+//   operands as div_sig (d == 0: saturated; n == 0: zero). y = div_recip(c, d).
+DivSig div_mul_round(const DivConfig& c, uint64_t n, uint64_t d, uint64_t y);
+// The two halves for one pair (what div_sig calls for shared_recip).
+DivSig div_sig_shared_recip(const DivConfig& c, uint64_t n, uint64_t d);
+
+// A-priori error bound of the configuration (docs/arith.md "shared_recip"), doubles with an
+// upward nudge (a report-side bound, not the datapath):
+//   recip_rel_err: bound on the reciprocal's relative error δ = 1 − bn·y (seed error S from
+//     recip_core_seed_error, then per NR step e ← e² + (1 + e)·2^−F + 2·2^−F; one-sided,
+//     0 ≤ δ, after ≥ 1 step; two-sided |δ| ≤ S (+ 2·2^−F if the seed is truncated) at 0 steps);
+//   error_bound_ulp: max |result − exact| in ulps of the exact quotient's binade:
+//     radix2 0.5; recip_mul 0.5 when 2^qb·δ < 1 (the ±1 correction suffices), else +inf (no
+//     bound claimed); shared_recip 0.5 + 2^qb·δ (the result is also never more than ½ ulp
+//     above the exact quotient after ≥ 1 NR step).
+struct DivBound {
+  double seed_rel_err = 0;
+  double recip_rel_err = 0;
+  double error_bound_ulp = 0;
+};
+DivBound div_bound(const DivConfig& c);
+
+// The reciprocal core of recip_mul and shared_recip: x_bits = div_align_bits, seed_frac_bits = seed_bits.
 RecipCoreShape div_recip_core_shape(const DivConfig& c);
 
 // Seed table for recip_mul: the reciprocal core's minimax table (recip_core_seed_table),

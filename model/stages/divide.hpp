@@ -21,9 +21,14 @@ namespace fxr {
 //   |N| is rounded (RNE) to div.num_bits and D to div.den_bits significant bits — PRECISION
 //   IS LOST HERE when they have more bits — then div_sig rounds the quotient (RNE).
 //   Sign-magnitude: the divider sees magnitudes, the sign of N is the result's sign.
+//   div.algorithm = shared_recip: the reciprocal of D's significand is computed once per pixel
+//   (normalize_den, div_recip) and every varying is one multiply rounded once (div_mul_round):
+//   the same values as div_sig per varying, within div_bound() of the exact quotient of the
+//   rounded operands, not correctly rounded (docs/arith.md "shared_recip").
 struct DenNorm {
   uint64_t d = 0;  // D's significand, msb at den_bits − 1
   int e = 0;       // msb index of D (after rounding carry) + ed
+  uint64_t y = 0;  // shared_recip: div_recip(d), once per pixel (else 0)
 };
 inline DenNorm normalize_den(const DivConfig& dc, i128 D, int ed) {
   DenNorm r;
@@ -31,6 +36,7 @@ inline DenNorm normalize_den(const DivConfig& dc, i128 D, int ed) {
   const Normalized nd = normalize((u128)D, dc.den_bits, Round::HalfEven);
   r.d = nd.sig;
   r.e = nd.exp + ed;
+  if (dc.algorithm == DivAlgorithm::SharedRecip) r.y = div_recip(dc, r.d);
   return r;
 }
 inline FxFloat divide_varying(const DivConfig& dc, i128 N, int en, const DenNorm& dn) {
@@ -39,7 +45,8 @@ inline FxFloat divide_varying(const DivConfig& dc, i128 N, int en, const DenNorm
   out.neg = N < 0;
   const u128 mag = N < 0 ? (u128)0 - (u128)N : (u128)N;
   const Normalized nn = normalize(mag, dc.num_bits, Round::HalfEven);
-  const DivSig q = div_sig(dc, nn.sig, dn.d);
+  const DivSig q = dc.algorithm == DivAlgorithm::SharedRecip ? div_mul_round(dc, nn.sig, dn.d, dn.y)
+                                                             : div_sig(dc, nn.sig, dn.d);
   // value = sig·2^−(qb−1)·2^exp_adj · 2^(msb N + en) / 2^(msb D + ed)
   out.sig = q.sig;
   out.exp = q.exp_adj + (nn.exp + en) - dn.e - (dc.quot_bits - 1);
@@ -72,7 +79,8 @@ class DivideStage {
     emit(static_cast<const Out&>(f_));
   }
 
-  // The divider's own cost (div_cost, rtl/fxr_div.sv) for one varying lane.
+  // The divider's own cost (div_cost, rtl/fxr_div.sv) for one varying lane; the whole stage
+  // (rtl/fxr_divide.sv) at a number of varyings and lanes: divide_cost below.
   static StageCost cost(const Config& cfg) { return as_stage_cost(div_cost(cfg.div)); }
 
  private:
@@ -80,5 +88,48 @@ class DivideStage {
   int nv_;
   Fragment f_;
 };
+
+// Cost of rtl/fxr_divide.sv (stage 9) with `lanes` divider lanes for `num_varyings` varyings
+// (lanes ≤ num_varyings; the RTL's default is lanes = num_varyings):
+//   latency = lane latency + 3 (the sample register, the normalised group register, the lanes,
+//   the output register; the lane latency is div_cost's) + (groups − 1) (the fragment's last
+//   group is issued that much later), ii = groups = ⌈num_varyings / lanes⌉ (pipelined lanes);
+//   per_varying (radix2, recip_mul): `lanes` dividers (div_cost each);
+//   shared_recip: one reciprocal core (seed ROM, NR multipliers) and per lane one (W+1) × F
+//   product, compare, increment and clamps (div_cost's shared_recip figures are one lane).
+//   Plus (1 + lanes) normalisers of a plane sum (leading-one search, shift, RNE increment).
+// ff_bits estimates the registers: the lanes', the sample, the normalised group, the sideband
+// FIFO (2^⌈log2(lane latency + 2)⌉ entries), the fragment accumulator and the output.
+inline StageCost divide_cost(const Config& cfg, int num_varyings, int lanes) {
+  const DivConfig& c = cfg.div;
+  const StageCost lane = div_cost(c);
+  StageCost k;
+  const int groups = (num_varyings + lanes - 1) / lanes;
+  k.latency = lane.latency + 3 + (groups - 1) * lane.ii;  // the last group issues groups − 1 later
+  k.ii = lane.ii * groups;
+  const int w = div_align_bits(c);
+  if (c.algorithm == DivAlgorithm::SharedRecip) {
+    k.table_bits = lane.table_bits;
+    for (const auto& m : recip_core_multipliers(div_recip_core_shape(c))) k.add_mult(m.first, m.second);
+    for (int l = 0; l < lanes; ++l) k.add_mult(w + 1, c.nr_frac_bits);
+    k.adder_bits = lanes * lane.adder_bits;
+    k.ff_bits = lane.ff_bits + (lanes - 1) * (lane.latency * (w + 1 + 2) + c.quot_bits + 2);
+  } else {
+    k.table_bits = (int64_t)lanes * lane.table_bits;
+    for (int l = 0; l < lanes; ++l)
+      for (const auto& m : lane.multipliers) k.add_mult(m.first, m.second);
+    k.adder_bits = lanes * lane.adder_bits;
+    k.ff_bits = lanes * lane.ff_bits;
+  }
+  const int ipb = interp_plane_bits(cfg.raster), eb = fx_exp_field_bits(cfg);
+  k.adder_bits += (1 + lanes) * (ipb + c.num_bits + 1) + lanes * 3 * (eb + 4);  // negate, RNE, exponents
+  int fifo = 1;
+  while (fifo < lane.latency + 2) fifo *= 2;
+  const int64_t pix = record_bits<Fragment>(cfg, 0);
+  const int64_t sideband = pix + lanes * (2 + eb + 4) + 2;
+  k.ff_bits += record_bits<PlaneSample>(cfg, num_varyings) + lanes * c.num_bits + c.den_bits + sideband +
+               fifo * sideband + 2 * record_bits<Fragment>(cfg, num_varyings);
+  return k;
+}
 
 }  // namespace fxr
