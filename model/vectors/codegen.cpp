@@ -165,6 +165,7 @@ void emit_sv_record_package(std::ostream& os, const Config& cfg, int num_varying
   emit_record_struct<PlaneSample>(os, "plane_sample", s);
   emit_record_struct<LineEquations>(os, "line_equations", s);
   emit_record_struct<LineFragment>(os, "line_fragment", s);
+  emit_record_struct<Fragment>(os, "fragment", s);
   os << "endpackage\n";
 }
 

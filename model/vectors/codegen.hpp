@@ -29,8 +29,8 @@ void emit_sv_vector_package(std::ostream& os, const Config& cfg);
 void emit_verilator_ports(std::ostream& os, const std::string& unit, const VecLayout& l);
 
 // The package fxr_rec_pkg: one packed struct per stage record of the back end (TriangleEquations
-// as triangle_equations_t, Span as span_t, PlaneSample as plane_sample_t; the line path's
-// LineEquations as line_equations_t, LineFragment as line_fragment_t), members in the order
+// as triangle_equations_t, Span as span_t, PlaneSample as plane_sample_t, Fragment as fragment_t;
+// the line path's LineEquations as line_equations_t, LineFragment as line_fragment_t), members in the order
 // and with the widths of the record's visit() at (cfg, num_varyings): the first field is the most
 // significant. The transaction testbench (tb/txn_harness.hpp) binds a port of such a struct to
 // the same fields of a transaction vector row (docs/rtl.md, "Record ports").
