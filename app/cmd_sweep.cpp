@@ -9,6 +9,7 @@
 //   report.md      default row, Pareto fronts, all rows, plots (docs/reports.md explains it)
 //   error_vs_<cost>.png   made by scripts/plot_sweep.py (skipped with a message without matplotlib)
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
@@ -25,6 +26,7 @@
 #include "model/config/json_input.hpp"
 #include "model/config/validate.hpp"
 #include "model/arith/div.hpp"
+#include "model/stages/divide.hpp"
 #include "model/stages/recip.hpp"
 #include "analysis/measure.hpp"
 #include "analysis/sweep_table.hpp"
@@ -185,10 +187,30 @@ SweepTable sweep_recip(const Opts& o) {
       "model speed: ns per RecipUnit::sig call on this machine (not reproducible)");
 }
 
+// Stage 9 at a number of varyings, one fragment per clock (Lanes = varyings, rtl/fxr_divide.sv):
+// the per-fragment cost that decides between per-varying dividers and one shared reciprocal.
+fxr::StageCost stage_cost(const fxr::DivConfig& c, int varyings) {
+  fxr::Config cfg;
+  cfg.div = c;
+  return fxr::divide_cost(cfg, varyings, varyings);
+}
+
 SweepTable sweep_div(const Opts& o, uint64_t count) {
+  const std::vector<MetricCol> extra = {
+      {"error_bound_ulp", "a-priori bound on max |result - exact|, ulps (div_bound; empty: none claimed)", false},
+      {"stage_area_proxy_2v", "stage 9 (fxr_divide) area proxy, 2 varyings at one fragment per clock", true},
+      {"stage_mult_bits_2v", "stage 9 partial-product bits, 2 varyings at one fragment per clock", true},
+      {"stage_area_proxy_8v", "stage 9 area proxy, 8 varyings at one fragment per clock", true},
+      {"stage_latency", "stage 9 latency (lane latency + 3), cycles", true},
+  };
   return sweep_unit(
-      o, "div", fxr::div_sweep_configs(), {}, fxr::MeasureOptions{false, count, o.seed},
-      [](const fxr::DivConfig&, const fxr::ErrorStats&) { return std::vector<double>{}; },
+      o, "div", fxr::div_sweep_configs(), extra, fxr::MeasureOptions{false, count, o.seed},
+      [](const fxr::DivConfig& c, const fxr::ErrorStats&) {
+        const double bound = fxr::div_bound(c).error_bound_ulp;
+        const fxr::StageCost k2 = stage_cost(c, 2), k8 = stage_cost(c, 8);
+        return std::vector<double>{std::isinf(bound) ? NAN : bound, (double)k2.area_proxy(), (double)k2.mult_bits,
+                                   (double)k8.area_proxy(), (double)k2.latency};
+      },
       [](const fxr::DivConfig& c) {
         const uint64_t nlo = uint64_t(1) << (c.num_bits - 1), dlo = uint64_t(1) << (c.den_bits - 1);
         return [c, nlo, dlo](uint64_t j) {
