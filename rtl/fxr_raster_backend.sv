@@ -1,6 +1,6 @@
-// fxr_raster_backend: the raster unit's back end (issue 10), stages 5–8 as one valid / ready
-// chain: fxr_setup → fxr_traverse → fxr_interp → fxr_depth, snapped triangles in, the fragments
-// that pass the depth test out, in the model's order (model/unit/chain.hpp, FragmentChain), the
+// fxr_raster_backend: the raster unit's back end (issue 10), stages 5–9 as one valid / ready
+// chain: fxr_setup → fxr_traverse → fxr_interp → fxr_depth → fxr_divide, snapped triangles in,
+// the fragments that pass the depth test out with their varyings, in the model's order (model/unit/chain.hpp, FragmentChain), the
 // depth buffer behind a memory port and the model's RasterStats back-end counters as registers.
 // docs/rtl.md, "fxr_raster_backend"; co-simulation: tb/backend_test.cpp.
 //
@@ -11,8 +11,8 @@
 //   cull_i, front_ccw_i, interp_i,  and fxr_depth; stable while triangles are in flight
 //   depth_func_i, depth_test_i,
 //   depth_write_i
-//   out_valid_o / out_ready_i,      fxr_rec_pkg::plane_sample_t: the fragments that pass (the
-//   out_o                           model's depth.out: prim, x, y, depth code, den / num sums)
+//   out_valid_o / out_ready_i,      fxr_rec_pkg::fragment_t: the fragments that pass (the model's
+//   out_o                           divide.out: prim, x, y, depth code, every varying)
 //   mem_req_*, mem_rsp_*            fxr_depth's depth-buffer port (request / response, any latency)
 //   mem_wr_*                        its write channel (DepthWritePort = 1: writes here, reads on
 //                                   mem_req_*; 0: unused, mem_wr_valid_o low)
@@ -24,7 +24,7 @@
 //                   same when no primitive is clipped into pieces)
 //     spans         spans out of traversal
 //     frag_generated  RasterStats::fragments_generated (covered pixels: x1 − x0 + 1 per span)
-//     frag_depth_pass RasterStats::fragments_depth_pass (samples out of fxr_depth)
+//     frag_depth_pass RasterStats::fragments_depth_pass (samples out of fxr_depth, into fxr_divide)
 //     frag_depth_fail RasterStats::fragments_depth_fail (samples into fxr_depth − passed: exact
 //                   once the samples in flight have left the depth unit's queue)
 //   perf_*_o                        clocks in which a stage held a result its successor did not
@@ -34,6 +34,7 @@
 //     span_stall    a span waits for fxr_interp (busy with the span before)
 //     span_wait     a span waits for its equations (the FIFO head being retired)
 //     sample_stall  a sample waits for fxr_depth (memory latency / back-pressure, hazards)
+//     pass_stall    a passing sample waits for fxr_divide
 //     out_stall     a fragment waits at out_o (out_ready_i low)
 //
 // The triangle's equations for fxr_interp's ctx_i. fxr_traverse accepts the next triangle while
@@ -53,6 +54,7 @@ module fxr_raster_backend #(
   parameter bit DepthWritePort  = 1'b1,  // fxr_depth's WritePort: writes on mem_wr_* (0: on mem_req_*)
   parameter int StatBits        = 32,  // counter registers (wrap at 2^StatBits)
   parameter int InterpDivSteps  = 4,   // fxr_interp's DivStepsPerClock (quotient bits per clock)
+  parameter int DivideLanes     = fxr_rec_pkg::NumVaryings,  // fxr_divide's Lanes (varyings per clock)
   // derived (model/unit/io.hpp, model/stages/setup.hpp)
   localparam int Db       = DepthFormat == fxr_config_pkg::RasterDepthFormatD24 ? 24 : 16,
   localparam int PB       = WindowIntBits,      // pixel index (signed)
@@ -81,7 +83,7 @@ module fxr_raster_backend #(
   input  logic                          depth_write_i,
   output logic                          out_valid_o,
   input  logic                          out_ready_i,
-  output fxr_rec_pkg::plane_sample_t    out_o,
+  output fxr_rec_pkg::fragment_t        out_o,
   output logic                          mem_req_valid_o,
   input  logic                          mem_req_ready_i,
   output logic                          mem_req_write_o,
@@ -108,6 +110,7 @@ module fxr_raster_backend #(
   output logic [StatBits-1:0]           perf_span_stall_o,
   output logic [StatBits-1:0]           perf_span_wait_o,
   output logic [StatBits-1:0]           perf_sample_stall_o,
+  output logic [StatBits-1:0]           perf_pass_stall_o,
   output logic [StatBits-1:0]           perf_out_stall_o
 );
   if (TriFifoDepth < 2 || (TriFifoDepth & (TriFifoDepth - 1)) != 0) begin : g_bad_depth
@@ -240,7 +243,8 @@ module fxr_raster_backend #(
   );
 
   // ---- stage 8: depth -----------------------------------------------------------------------------
-  logic dp_in_ready;
+  logic                       dp_in_ready, dp_out_valid, dp_out_ready;
+  fxr_rec_pkg::plane_sample_t dp_out;
   assign ip_out_ready = dp_in_ready;
   fxr_depth #(.WindowIntBits(WindowIntBits), .DepthFormat(DepthFormat), .QueueDepth(DepthQueueDepth),
              .WritePort(DepthWritePort)) u_depth (
@@ -255,9 +259,9 @@ module fxr_raster_backend #(
     .in_valid_i     (ip_out_valid),
     .in_ready_o     (dp_in_ready),
     .in_i           (ip_out),
-    .out_valid_o    (out_valid_o),
-    .out_ready_i    (out_ready_i),
-    .out_o          (out_o),
+    .out_valid_o    (dp_out_valid),
+    .out_ready_i    (dp_out_ready),
+    .out_o          (dp_out),
     .mem_req_valid_o(mem_req_valid_o),
     .mem_req_ready_i(mem_req_ready_i),
     .mem_req_write_o(mem_req_write_o),
@@ -271,14 +275,26 @@ module fxr_raster_backend #(
     .mem_wr_data_o  (mem_wr_data_o)
   );
 
+  // ---- stage 9: divide ---------------------------------------------------------------------------
+  fxr_divide #(.WindowIntBits(WindowIntBits), .DepthFormat(DepthFormat), .Lanes(DivideLanes)) u_divide (
+    .clk_i      (clk_i),
+    .rst_ni     (rst_ni),
+    .in_valid_i (dp_out_valid),
+    .in_ready_o (dp_out_ready),
+    .in_i       (dp_out),
+    .out_valid_o(out_valid_o),
+    .out_ready_i(out_ready_i),
+    .out_o      (out_o)
+  );
+
   // ---- counters -------------------------------------------------------------------------------
   logic [StatBits-1:0] n_tri_in_q, n_drawn_q, n_zero_q, n_back_q, n_nosamp_q, n_range_q;
   logic [StatBits-1:0] n_spans_q, n_gen_q, n_tested_q, n_pass_q;
-  logic                in_fire, tv_fire, ip_fire, dp_fire, out_fire;
+  logic                in_fire, tv_fire, ip_fire, dp_fire, pass_fire;
   assign in_fire  = in_valid_i & in_ready_o;
   assign tv_fire  = tv_out_valid & tv_out_ready;
   assign ip_fire  = ip_out_valid & ip_out_ready;
-  assign out_fire = out_valid_o & out_ready_i;
+  assign pass_fire = dp_out_valid & dp_out_ready;
   assign dp_fire  = ip_fire;
 
   logic signed [PB:0] span_len;
@@ -304,7 +320,7 @@ module fxr_raster_backend #(
         n_gen_q   <= n_gen_q + StatBits'(unsigned'(span_len));
       end
       if (dp_fire) n_tested_q <= n_tested_q + StatBits'(1);
-      if (out_fire) n_pass_q <= n_pass_q + StatBits'(1);
+      if (pass_fire) n_pass_q <= n_pass_q + StatBits'(1);
     end
   end
   assign stat_tri_in_o          = n_tri_in_q;
@@ -318,16 +334,18 @@ module fxr_raster_backend #(
   assign stat_frag_depth_pass_o = n_pass_q;
   assign stat_frag_depth_fail_o = n_tested_q - n_pass_q;
 
-  logic [StatBits-1:0] p_setup_q, p_full_q, p_span_q, p_wait_q, p_sample_q, p_out_q;
+  logic [StatBits-1:0] p_setup_q, p_full_q, p_span_q, p_wait_q, p_sample_q, p_pass_q, p_out_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      p_setup_q <= '0; p_full_q <= '0; p_span_q <= '0; p_wait_q <= '0; p_sample_q <= '0; p_out_q <= '0;
+      p_setup_q <= '0; p_full_q <= '0; p_span_q <= '0; p_wait_q <= '0; p_sample_q <= '0; p_pass_q <= '0;
+      p_out_q <= '0;
     end else begin
       if (su_valid && !su_ready) p_setup_q <= p_setup_q + StatBits'(1);
       if (su_valid && fifo_full) p_full_q <= p_full_q + StatBits'(1);
       if (ip_in_valid && !ip_in_ready) p_span_q <= p_span_q + StatBits'(1);
       if (tv_out_valid && !ip_in_valid) p_wait_q <= p_wait_q + StatBits'(1);
       if (ip_out_valid && !ip_out_ready) p_sample_q <= p_sample_q + StatBits'(1);
+      if (dp_out_valid && !dp_out_ready) p_pass_q <= p_pass_q + StatBits'(1);
       if (out_valid_o && !out_ready_i) p_out_q <= p_out_q + StatBits'(1);
     end
   end
@@ -336,6 +354,7 @@ module fxr_raster_backend #(
   assign perf_span_stall_o   = p_span_q;
   assign perf_span_wait_o    = p_wait_q;
   assign perf_sample_stall_o = p_sample_q;
+  assign perf_pass_stall_o   = p_pass_q;
   assign perf_out_stall_o    = p_out_q;
 
 endmodule

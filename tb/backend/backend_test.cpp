@@ -1,6 +1,6 @@
 // Whole draws through rtl/fxr_raster_backend.sv (Verilator) against the model's chain
 // (model/unit/chain.hpp): the setup.in stream of a draw, taken from the chain's taps, is driven
-// into the back end, and its fragment stream must equal the model's depth.out stream bit for bit
+// into the back end, and its fragment stream must equal the model's divide.out stream bit for bit
 // and in order (none lost, none duplicated), the final depth buffer behind the memory port the
 // model's, and the counter registers the model's statistics. Random input gaps, output
 // back-pressure and depth-memory latency / request stalls; the report and waveform of
@@ -50,7 +50,7 @@ const char* const kStatNames[kStats] = {"tri_in",  "tri_drawn", "tri_zero_area",
 using Stats = std::array<uint64_t, kStats>;
 
 // Taps: setup's inputs become the rows of an in-memory "setup.in" (txn, n_out, SetupTriangle),
-// the depth stage's outputs the rows of "backend.out" (txn, seq, last, PlaneSample) with txn the
+// the divider's outputs the rows of "backend.out" (txn, seq, last, Fragment) with txn the
 // setup input they came from — the transaction-dump rules (model/vectors/scene_dump.hpp).
 struct BackendTaps {
   fxr::RecordShape shape;
@@ -68,7 +68,7 @@ struct BackendTaps {
     std::vector<fxr::VecField> fo = {{"txn", fxr::VecDir::Out, fxr::kTxnIdBits, false, "setup.in txn"},
                                      {"seq", fxr::VecDir::Out, fxr::kTxnCountBits, false, "index among the triangle's"},
                                      {"last", fxr::VecDir::Out, 1, false, "last of the triangle"}};
-    fxr::append_record_fields<fxr::PlaneSample>(shape, fxr::VecDir::Out, fo);
+    fxr::append_record_fields<fxr::Fragment>(shape, fxr::VecDir::Out, fo);
     v.stage = "backend";
     v.cfg = cfg;
     v.num_varyings = varyings;
@@ -104,7 +104,7 @@ struct BackendTaps {
   }
   template <class S>
   void out(const typename S::Out& r) {
-    if constexpr (std::is_same_v<S, fxr::DepthStage>) {
+    if constexpr (std::is_same_v<S, fxr::DivideStage>) {
       flush_out(false);
       out_row[0] = v.in.rows - 1;
       out_row[1] = n_out++;
@@ -130,7 +130,7 @@ struct Draw {
   std::vector<uint32_t> depth;  // the model's final buffer
   uint32_t clear = 0;           // the buffer's value before the draw (both sides)
   Stats want{};
-  uint64_t fragments = 0;  // depth.out rows
+  uint64_t fragments = 0;  // divide.out rows
 };
 
 // Runs the model's chain on `tris` and collects what the back end must reproduce. The depth
@@ -164,7 +164,7 @@ Draw model_draw(const std::string& name, const fxr::Config& cfg, fxr::DrawState 
   for (const fxr::SetupTriangle& t : taps.tris) ++oc[(size_t)stage.step(t, [](const fxr::TriangleEquations&) {})];
   d.want = {taps.tris.size(), oc[0], oc[1], oc[2], oc[3], oc[4], taps.spans, f.stats.fragments_generated,
             f.stats.fragments_depth_pass, f.stats.fragments_depth_fail};
-  EXPECT_EQ(d.want[8], d.fragments) << name << ": depth passes = depth.out rows";
+  EXPECT_EQ(d.want[8], d.fragments) << name << ": depth passes = divide.out rows";
   return d;
 }
 
@@ -176,8 +176,9 @@ struct Handshake {
   unsigned lat_min = 1, lat_max = 1, req_stall = 0;  // depth memory
 };
 
-constexpr int kPerf = 6;
-const char* const kPerfNames[kPerf] = {"setup_stall", "fifo_full", "span_stall", "span_wait", "sample_stall", "out_stall"};
+constexpr int kPerf = 7;
+const char* const kPerfNames[kPerf] = {"setup_stall", "fifo_full",  "span_stall", "span_wait",
+                                       "sample_stall", "pass_stall", "out_stall"};
 using Perf = std::array<uint64_t, kPerf>;
 
 struct RtlRun {
@@ -223,7 +224,8 @@ RtlRun run_rtl(const Draw& d, const SceneStageVectors& v, const Handshake& h, co
          u64(dut.stat_spans_o),          u64(dut.stat_frag_generated_o), u64(dut.stat_frag_depth_pass_o),
          u64(dut.stat_frag_depth_fail_o)};
     pf = {u64(dut.perf_setup_stall_o), u64(dut.perf_fifo_full_o),    u64(dut.perf_span_stall_o),
-          u64(dut.perf_span_wait_o),   u64(dut.perf_sample_stall_o), u64(dut.perf_out_stall_o)};
+          u64(dut.perf_span_wait_o),   u64(dut.perf_sample_stall_o), u64(dut.perf_pass_stall_o),
+          u64(dut.perf_out_stall_o)};
   };
   TxnOptions o;
   o.unit = "backend";
@@ -558,6 +560,21 @@ TEST(Backend, CheckerCatchesCorruptedDroppedAndSwappedFragments) {
     EXPECT_EQ(k.r.mismatches[0].cls, "depth");
     EXPECT_NE(k.r.mismatches[0].text.find("backend.out:41: field 'depth'"), std::string::npos) << k.r.mismatches[0].text;
     EXPECT_TRUE(std::filesystem::exists(k.r.wave));
+  }
+  {  // one bit of the second varying's significand of fragment 45 flipped (the divider's output
+     // is compared, not only the pixel): exactly that row and field
+    SceneStageVectors v = d.v;
+    size_t cv = 0;
+    for (size_t f = 0; f < n; ++f)
+      if (v.out.lay[f].name == "var1_sig") cv = f;
+    ASSERT_GT(cv, 0u);
+    v.out.data[45 * n + cv] ^= 1;
+    const RtlRun k = run_rtl(d, v, h, "backend_checker_varying");
+    EXPECT_FALSE(k.r.passed());
+    EXPECT_EQ(k.r.errors, 1u);
+    ASSERT_EQ(k.r.mismatches.size(), 1u);
+    EXPECT_EQ(k.r.mismatches[0].out_row, 45u);
+    EXPECT_EQ(k.r.mismatches[0].cls, "var1_sig");
   }
   {  // fragment 50 dropped from the expected stream: the RTL's extra fragment is reported
     SceneStageVectors v = d.v;
