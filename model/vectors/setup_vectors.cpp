@@ -382,8 +382,11 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
 
   // A point of the viewport (subpixel units), then the vertices around it.
   const int64_t S = 1ll << sp_;
-  const int64_t cx = ((int64_t)st.viewport_x + vec_random_in(rng, 0, st.viewport_w - 1)) * S + (int64_t)(uint64_t)low_bits(rng(), sp_);
-  const int64_t cy = ((int64_t)st.viewport_y + vec_random_in(rng, 0, st.viewport_h - 1)) * S + (int64_t)(uint64_t)low_bits(rng(), sp_);
+  // One draw per statement (the operands of + are unsequenced): pixel, then subpixel.
+  const int64_t cx_px = (int64_t)st.viewport_x + vec_random_in(rng, 0, st.viewport_w - 1);
+  const int64_t cx = cx_px * S + (int64_t)(uint64_t)low_bits(rng(), sp_);
+  const int64_t cy_px = (int64_t)st.viewport_y + vec_random_in(rng, 0, st.viewport_h - 1);
+  const int64_t cy = cy_px * S + (int64_t)(uint64_t)low_bits(rng(), sp_);
   int64_t x[3], y[3];
   const uint64_t size = rng() & 7;
   auto around = [&](int bits) {
@@ -459,13 +462,19 @@ void SetupVectors::random(std::mt19937_64& rng, VecRow& r) const {
           : zsel == 2 ? one_z
           : (uint64_t)low_bits(rng(), rc.z_frac_bits);
     const uint64_t rsel = rng() & 63;
-    v.rw = norm(rsel == 0, (1ull << (sig_rw_ - 1)) | (uint64_t)low_bits(rng(), sig_rw_ - 1),
-                rw_base + (int)vec_random_in(rng, 0, rw_spread), sig_rw_);
+    // One draw per statement: the order of draws inside one function call's arguments is
+    // unspecified (g++ and clang differ), and the file must be the same on every platform. The
+    // order is the one the committed vectors/setup files were generated with (exponent first).
+    const int rw_exp = rw_base + (int)vec_random_in(rng, 0, rw_spread);
+    const uint64_t rw_sig = (1ull << (sig_rw_ - 1)) | (uint64_t)low_bits(rng(), sig_rw_ - 1);
+    v.rw = norm(rsel == 0, rw_sig, rw_exp, sig_rw_);
     if (rsel == 1) v.rw = FxFloat{};
     for (int m = 0; m < kSetupVecVaryings; ++m) {
       const uint64_t vsel = rng() & 7;
-      v.vw[m] = norm(rng() & 1, (1ull << (sig_vw_ - 1)) | (uint64_t)low_bits(rng(), sig_vw_ - 1),
-                     (int)vec_random_in(rng, -40, 40), sig_vw_);
+      const int vw_exp = (int)vec_random_in(rng, -40, 40);  // draw order as for rw above
+      const uint64_t vw_sig = (1ull << (sig_vw_ - 1)) | (uint64_t)low_bits(rng(), sig_vw_ - 1);
+      const bool vw_neg = rng() & 1;
+      v.vw[m] = norm(vw_neg, vw_sig, vw_exp, sig_vw_);
       if (vsel == 0) v.vw[m] = FxFloat{};
     }
   }
