@@ -17,7 +17,7 @@ namespace {
 
 struct Opts {
   std::string config, sv, ports_dir, rec_sv;
-  int varyings = 2;
+  int varyings = fxr::kRecordPackageVaryings;
 };
 
 void write_file(const std::string& path, const std::string& text) {
@@ -43,7 +43,7 @@ fxr::app::Runner setup(CLI::App& sub) {
                  "write <unit>_ports_gen.hpp (Verilator port adapters) for every unit into this folder");
   sub.add_option("--emit-records-sv", o->rec_sv,
                  "write the SystemVerilog package fxr_rec_pkg (a packed struct per back-end stage record)");
-  sub.add_option("--varyings", o->varyings, "varyings of the records of --emit-records-sv (default 2)")
+  sub.add_option("--varyings", o->varyings, "varyings of the records of --emit-records-sv (default " + std::to_string(fxr::kRecordPackageVaryings) + ")")
       ->check(CLI::Range(0, fxr::kMaxVaryings));
   return [o]() {
     if (o->sv.empty() && o->ports_dir.empty() && o->rec_sv.empty())

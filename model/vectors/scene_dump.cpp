@@ -457,6 +457,11 @@ SceneManifest read_scene_manifest(const std::string& dir) {
 
 }  // namespace
 
+DrawState load_scene_draw_state(const std::string& dir, bool lines) {
+  const SceneManifest m = read_scene_manifest(dir);
+  return lines ? m.line_st : m.st;
+}
+
 SceneStageVectors load_scene_stage(const std::string& dir, const std::string& stage) {
   const SceneManifest m = read_scene_manifest(dir);
   const RecordShape shape{m.cfg, m.st.num_varyings};

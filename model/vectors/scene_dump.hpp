@@ -126,6 +126,9 @@ struct SceneStageVectors {
   int num_varyings = 0;
   SceneStageFile in, out;
 };
+// The draw state of a dump (scene.json "draw_state", or "line_draw_state" with lines = true),
+// read and range-checked by the same reader as load_scene_stage. Throws ConfigError naming the file.
+DrawState load_scene_draw_state(const std::string& dir, bool lines = false);
 // Throws ConfigError naming the file (and line / field) on any inconsistency.
 SceneStageVectors load_scene_stage(const std::string& dir, const std::string& stage);
 

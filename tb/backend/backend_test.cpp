@@ -22,6 +22,7 @@
 #include "frontend/scene.hpp"
 #include "model/unit/chain.hpp"
 #include "model/vectors/record_vectors.hpp"
+#include "model/vectors/codegen.hpp"
 #include "model/vectors/scene_dump.hpp"
 #include "txn/draw_state_ports.hpp"
 #include "txn_harness.hpp"
@@ -39,7 +40,7 @@ using Dut = Vfxr_raster_backend;
 // The varyings the RTL was generated for (fxr_rec_pkg::NumVaryings, `fxraster layout
 // --emit-records-sv` at its default): a draw with fewer runs with this many (the extra varyings
 // are the scene's zeros), so the records fit the ports.
-constexpr int kRtlVaryings = 2;
+constexpr int kRtlVaryings = fxr::kRecordPackageVaryings;
 
 // ---- the model's streams of one draw -----------------------------------------------------------
 

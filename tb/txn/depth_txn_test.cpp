@@ -14,12 +14,12 @@
 #include <fstream>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 
 #include "Vfxr_depth.h"
 #include "Vfxr_depth_wp.h"
 #include "depth_mem.hpp"
 #include "model/stages/depth.hpp"
+#include "model/vectors/scene_dump.hpp"
 #include "txn_harness.hpp"
 
 namespace {
@@ -41,16 +41,15 @@ struct State {
 };
 
 State read_state(const std::string& dir) {
-  std::ifstream f(dir + "/scene.json");
-  const nlohmann::json j = nlohmann::json::parse(f).at("draw_state");
+  const fxr::DrawState st = fxr::load_scene_draw_state(dir);
   State s;
-  s.func = j.at("depth_func").get<int>();
-  s.test = j.at("depth_test").get<int>() != 0;
-  s.write = j.at("depth_write").get<int>() != 0;
-  s.vx = j.at("viewport_x").get<int>();
-  s.vy = j.at("viewport_y").get<int>();
-  s.vw = j.at("viewport_w").get<int>();
-  s.vh = j.at("viewport_h").get<int>();
+  s.func = (int)st.depth_func;
+  s.test = st.depth_test;
+  s.write = st.depth_write;
+  s.vx = st.viewport_x;
+  s.vy = st.viewport_y;
+  s.vw = st.viewport_w;
+  s.vh = st.viewport_h;
   return s;
 }
 

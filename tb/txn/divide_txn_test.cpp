@@ -15,6 +15,7 @@
 #include "Vfxr_divide__shared_recip.h"
 #include "Vfxr_divide_lanes1.h"
 #include "Vfxr_divide_lanes1__shared_recip.h"
+#include "model/vectors/codegen.hpp"
 #include "model/config/config.hpp"
 #include "model/stages/divide.hpp"
 #include "txn_harness.hpp"
@@ -28,7 +29,7 @@ using fxr::tb::TxnResult;
 const std::string kCommitted = std::string(FXR_SOURCE_DIR) + "/vectors/scenes/transactions";
 const std::string kDefault = std::string(FXR_BINARY_DIR) + "/vectors/scene_default";
 const std::string kShared = std::string(FXR_BINARY_DIR) + "/vectors/scene_default_shared_recip";
-constexpr int kVaryings = 2;  // fxr_rec_pkg::NumVaryings of the build (the dumps' scenes)
+constexpr int kVaryings = fxr::kRecordPackageVaryings;  // fxr_rec_pkg::NumVaryings of the build
 
 TxnOptions opts(const std::string& run, uint64_t seed, unsigned gap, unsigned stall) {
   TxnOptions o;

@@ -3,14 +3,12 @@
 // transaction dump's scene.json ("draw_state", written by model/vectors/scene_dump.cpp).
 #pragma once
 
-#include <fstream>
 #include <string>
 #include <type_traits>
 
-#include <nlohmann/json.hpp>
-
 #include "model/config/param.hpp"
 #include "model/unit/io.hpp"
+#include "model/vectors/scene_dump.hpp"
 
 namespace fxr::tb {
 
@@ -44,35 +42,8 @@ void drive_draw_state(Dut& d, const DrawState& st, int window_int_bits) {
   }
 }
 
-// The draw state of a dump (scene.json "draw_state"; ConfigError naming the file when absent).
-inline DrawState read_dump_draw_state(const std::string& dir) {
-  const std::string path = dir + "/scene.json";
-  std::ifstream f(path);
-  if (!f) throw ConfigError(path + ": cannot open");
-  const nlohmann::json all = nlohmann::json::parse(f);
-  if (!all.contains("draw_state")) throw ConfigError(path + ": field 'draw_state' is missing");
-  const nlohmann::json& j = all.at("draw_state");
-  auto get = [&](const char* n) {
-    if (!j.contains(n)) throw ConfigError(path + ": field 'draw_state." + std::string(n) + "' is missing");
-    return j.at(n).get<int>();
-  };
-  DrawState st;
-  st.viewport_x = get("viewport_x");
-  st.viewport_y = get("viewport_y");
-  st.viewport_w = get("viewport_w");
-  st.viewport_h = get("viewport_h");
-  st.scissor_x = get("scissor_x");
-  st.scissor_y = get("scissor_y");
-  st.scissor_w = get("scissor_w");
-  st.scissor_h = get("scissor_h");
-  st.num_varyings = get("num_varyings");
-  st.front_ccw = get("front_ccw") != 0;
-  st.cull = (CullMode)get("cull");
-  st.depth_func = (DepthFunc)get("depth_func");
-  st.depth_test = get("depth_test") != 0;
-  st.depth_write = get("depth_write") != 0;
-  st.interp = (InterpMode)get("interp");
-  return st;
-}
+// The draw state of a dump (scene.json "draw_state"): the model's reader (checked conversions,
+// ConfigError naming the file and field).
+inline DrawState read_dump_draw_state(const std::string& dir) { return load_scene_draw_state(dir); }
 
 }  // namespace fxr::tb
