@@ -138,6 +138,18 @@ struct TxnOptions {
   size_t max_print = 20;
 };
 
+// The options of one run: unit, run name, handshake seed and randomness, the rest at defaults.
+inline TxnOptions txn_options(const std::string& unit, const std::string& run, uint64_t seed, unsigned gap_pct,
+                              unsigned stall_pct) {
+  TxnOptions o;
+  o.unit = unit;
+  o.run_name = run;
+  o.seed = seed;
+  o.in_gap_pct = gap_pct;
+  o.out_stall_pct = stall_pct;
+  return o;
+}
+
 // Per-cycle access to the DUT's other ports. reset() is called before each simulation (a failed
 // run is replayed with tracing: the hook starts again from the same state).
 template <class Dut>

@@ -5,6 +5,7 @@
 #include "model/stages/input.hpp"
 #include "model/stages/interp.hpp"
 #include "model/stages/line_setup.hpp"
+#include "model/stages/recip_stage.hpp"
 #include "model/stages/setup.hpp"
 #include "model/stages/traverse.hpp"
 #include "model/vectors/record_vectors.hpp"
@@ -157,8 +158,12 @@ void emit_sv_record_package(std::ostream& os, const Config& cfg, int num_varying
   os << "  localparam int FxExpBits = " << fx_exp_field_bits(cfg) << ";  // every _exp member (signed)\n";
   os << "  localparam int ClipVertexSigBits = " << clip_vertex_sig_bits(cfg)
      << ";  // the _sig members of exact_triangle_t\n";
+  os << "  localparam int ClipVertexHasWa = " << (clip_vertex_has_wa(cfg) ? 1 : 0)
+     << ";  // 1: clipped_triangle_t / recip_triangle_t list v<i>_wa after v<i>_w\n";
   emit_record_struct<InputTriangle>(os, "input_triangle", s);
   emit_record_struct<ExactTriangle>(os, "exact_triangle", s);
+  emit_record_struct<ClippedTriangle>(os, "clipped_triangle", s);  // clip -> recip
+  emit_record_struct<RecipTriangle>(os, "recip_triangle", s);      // recip -> viewport
   emit_record_struct<SetupTriangle>(os, "setup_triangle", s);
   emit_record_struct<TriangleEquations>(os, "triangle_equations", s);
   emit_record_struct<Span>(os, "span", s);
