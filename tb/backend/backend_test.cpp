@@ -18,234 +18,39 @@
 #include <type_traits>
 
 #include "Vfxr_raster_backend.h"
-#include "depth_mem.hpp"
+#include "backend/backend_draw.hpp"
 #include "frontend/scene.hpp"
-#include "model/unit/chain.hpp"
-#include "model/vectors/record_vectors.hpp"
-#include "model/vectors/codegen.hpp"
-#include "model/vectors/scene_dump.hpp"
-#include "txn/draw_state_ports.hpp"
-#include "txn_harness.hpp"
 
 namespace {
 
 using fxr::SceneStageVectors;
-using fxr::tb::DepthMem;
-using fxr::tb::DepthMemOptions;
-using fxr::tb::TxnHook;
-using fxr::tb::TxnOptions;
-using fxr::tb::TxnResult;
 using Dut = Vfxr_raster_backend;
 
-// The varyings the RTL was generated for (fxr_rec_pkg::NumVaryings, `fxraster layout
-// --emit-records-sv` at its default): a draw with fewer runs with this many (the extra varyings
-// are the scene's zeros), so the records fit the ports.
-constexpr int kRtlVaryings = fxr::kRecordPackageVaryings;
+using fxr::tb::Draw;
+using fxr::tb::Handshake;
+using fxr::tb::kPerf;
+using fxr::tb::kPerfNames;
+using fxr::tb::kRtlVaryings;
+using fxr::tb::kStatNames;
+using fxr::tb::kStats;
+using fxr::tb::RtlRun;
+using fxr::tb::Stats;
+using fxr::tb::stats_text;
 
-// ---- the model's streams of one draw -----------------------------------------------------------
-
-// Counters of the back end (rtl/fxr_raster_backend.sv, stat_*_o), in this order.
-constexpr int kStats = 10;
-const char* const kStatNames[kStats] = {"tri_in",  "tri_drawn", "tri_zero_area",  "tri_backface",    "tri_no_samples",
-                                        "tri_range", "spans",   "frag_generated", "frag_depth_pass", "frag_depth_fail"};
-using Stats = std::array<uint64_t, kStats>;
-
-// Taps: setup's inputs become the rows of an in-memory "setup.in" (txn, n_out, SetupTriangle),
-// the divider's outputs the rows of "backend.out" (txn, seq, last, Fragment) with txn the
-// setup input they came from — the transaction-dump rules (model/vectors/scene_dump.hpp).
-struct BackendTaps {
-  fxr::RecordShape shape;
-  SceneStageVectors v;
-  std::vector<fxr::SetupTriangle> tris;
-  uint64_t spans = 0;
-  uint64_t n_out = 0;
-  fxr::VecRow in_row, out_row;
-  bool out_pending = false;
-
-  BackendTaps(const fxr::Config& cfg, int varyings, const std::string& name) : shape{cfg, varyings} {
-    std::vector<fxr::VecField> fi = {{"txn", fxr::VecDir::In, fxr::kTxnIdBits, false, "transaction id"},
-                                     {"n_out", fxr::VecDir::In, fxr::kTxnCountBits, false, "fragments of this triangle"}};
-    fxr::append_record_fields<fxr::SetupTriangle>(shape, fxr::VecDir::In, fi);
-    std::vector<fxr::VecField> fo = {{"txn", fxr::VecDir::Out, fxr::kTxnIdBits, false, "setup.in txn"},
-                                     {"seq", fxr::VecDir::Out, fxr::kTxnCountBits, false, "index among the triangle's"},
-                                     {"last", fxr::VecDir::Out, 1, false, "last of the triangle"}};
-    fxr::append_record_fields<fxr::Fragment>(shape, fxr::VecDir::Out, fo);
-    v.stage = "backend";
-    v.cfg = cfg;
-    v.num_varyings = varyings;
-    v.in = fxr::SceneStageFile{name + ":setup.in", fxr::VecLayout(fi), fxr::kTxnInHeaderFields, 0, {}};
-    v.out = fxr::SceneStageFile{name + ":backend.out", fxr::VecLayout(fo), fxr::kTxnOutHeaderFields, 0, {}};
-    in_row.assign(v.in.lay.size(), 0);
-    out_row.assign(v.out.lay.size(), 0);
-  }
-  void flush_out(bool last) {
-    if (!out_pending) return;
-    out_row[2] = last;
-    v.out.data.insert(v.out.data.end(), out_row.begin(), out_row.end());
-    ++v.out.rows;
-    out_pending = false;
-  }
-  void flush_in() {
-    if (v.in.rows == 0 && tris.empty()) return;
-    v.in.data[(v.in.rows - 1) * v.in.lay.size() + 1] = n_out;
-  }
-  template <class S>
-  void in(const typename S::In& r) {
-    if constexpr (std::is_same_v<S, fxr::SetupStage>) {
-      flush_out(true);
-      if (v.in.rows) flush_in();
-      in_row[0] = v.in.rows;
-      in_row[1] = 0;
-      fxr::pack_record(r, shape, in_row, fxr::kTxnInHeaderFields, v.in.path);
-      v.in.data.insert(v.in.data.end(), in_row.begin(), in_row.end());
-      ++v.in.rows;
-      tris.push_back(r);
-      n_out = 0;
-    }
-  }
-  template <class S>
-  void out(const typename S::Out& r) {
-    if constexpr (std::is_same_v<S, fxr::DivideStage>) {
-      flush_out(false);
-      out_row[0] = v.in.rows - 1;
-      out_row[1] = n_out++;
-      fxr::pack_record(r, shape, out_row, fxr::kTxnOutHeaderFields, v.out.path);
-      out_pending = true;
-    }
-    if constexpr (std::is_same_v<S, fxr::TraverseStage>) ++spans;
-  }
-  void finish() {
-    flush_out(true);
-    if (v.in.rows) flush_in();
-  }
-};
-
-struct NullSink : fxr::FragmentSink {
-  void emit(const fxr::Fragment&) override {}
-};
-
-struct Draw {
-  std::string name;
-  fxr::DrawState st;
-  SceneStageVectors v;
-  std::vector<uint32_t> depth;  // the model's final buffer
-  uint32_t clear = 0;           // the buffer's value before the draw (both sides)
-  Stats want{};
-  uint64_t fragments = 0;  // divide.out rows
-};
-
-// Runs the model's chain on `tris` and collects what the back end must reproduce. The depth
-// buffer starts at `clear` (the unit's clear value, the maximum code, when negative): the chain of
-// run_raster_unit_to on a buffer filled after frame_begin.
-Draw model_draw(const std::string& name, const fxr::Config& cfg, fxr::DrawState st,
+// The model's draw (tb/backend/backend_draw.hpp), its passed samples being the divider's outputs.
+Draw model_draw(const std::string& name, const fxr::Config& cfg, const fxr::DrawState& st,
                 const std::vector<fxr::ClipTriangle>& tris, int64_t clear = -1) {
-  st.num_varyings = kRtlVaryings;
-  BackendTaps taps(cfg, kRtlVaryings, name);
-  fxr::FrameOutput f;
-  NullSink sink;  // varyings computed (the planes of every varying), fragments not kept
-  fxr::frame_begin(cfg, st, f);
-  const uint32_t clear_code = clear < 0 ? (uint32_t)fxr::depth_max_code(cfg.raster) : (uint32_t)clear;
-  std::fill(f.depth.begin(), f.depth.end(), clear_code);
-  {
-    fxr::UnitChain<BackendTaps> chain(cfg, st, f, &sink, taps);
-    for (size_t p = 0; p < tris.size(); ++p) chain.draw(tris[p], (uint32_t)p);
-  }
-  taps.finish();
-  Draw d;
-  d.clear = clear_code;
-  d.name = name;
-  d.st = st;
-  d.v = std::move(taps.v);
-  d.depth = std::move(f.depth);
-  d.fragments = d.v.out.rows;
-  // Setup outcomes per triangle: SetupStage stepped again on setup's inputs (the chain's
-  // accounting is per primitive, RasterStats).
-  fxr::SetupStage stage(cfg, st, true);
-  std::array<uint64_t, 5> oc{};
-  for (const fxr::SetupTriangle& t : taps.tris) ++oc[(size_t)stage.step(t, [](const fxr::TriangleEquations&) {})];
-  d.want = {taps.tris.size(), oc[0], oc[1], oc[2], oc[3], oc[4], taps.spans, f.stats.fragments_generated,
-            f.stats.fragments_depth_pass, f.stats.fragments_depth_fail};
+  Draw d = fxr::tb::model_draw(name, cfg, st, tris, clear);
   EXPECT_EQ(d.want[8], d.fragments) << name << ": depth passes = divide.out rows";
   return d;
 }
 
-// ---- the RTL run -------------------------------------------------------------------------------
-
-struct Handshake {
-  uint64_t seed = 1;
-  unsigned gap = 0, stall = 0;       // input gaps, output back-pressure (%)
-  unsigned lat_min = 1, lat_max = 1, req_stall = 0;  // depth memory
-};
-
-constexpr int kPerf = 7;
-const char* const kPerfNames[kPerf] = {"setup_stall", "fifo_full",  "span_stall", "span_wait",
-                                       "sample_stall", "pass_stall", "out_stall"};
-using Perf = std::array<uint64_t, kPerf>;
-
-struct RtlRun {
-  TxnResult r;
-  Stats stats{};
-  Perf perf{};
-  std::vector<uint32_t> depth;
-  uint64_t bad_addresses = 0;
-};
-
-template <class T>
-uint64_t u64(const T& x) {
-  return (uint64_t)x;
-}
-
 RtlRun run_rtl(const Draw& d, const SceneStageVectors& v, const Handshake& h, const std::string& run,
                bool write_wave = true) {
-  RtlRun out;
-  DepthMemOptions mo;
-  mo.seed = 1000 + h.seed;
-  mo.min_latency = h.lat_min;
-  mo.max_latency = h.lat_max;
-  mo.req_stall_pct = h.req_stall;
-  mo.wr_stall_pct = h.req_stall;  // the write channel (DepthWritePort)
-  DepthMem mem((size_t)d.st.viewport_w * (size_t)d.st.viewport_h, d.clear, mo);
-  Stats& s = out.stats;
-  TxnHook<Dut> hook;
-  Perf& pf = out.perf;
-  hook.reset = [&] {
-    mem.reset();
-    s = Stats{};
-    pf = Perf{};
-  };
-  const int wib = v.cfg.raster.window_int_bits;
-  hook.drive = [&](Dut& dut) {
-    fxr::tb::drive_draw_state(dut, d.st, wib);
-    mem.drive(dut);
-  };
-  hook.observe = [&](Dut& dut) {
-    mem.observe(dut);
-    s = {u64(dut.stat_tri_in_o),         u64(dut.stat_tri_drawn_o),    u64(dut.stat_tri_zero_area_o),
-         u64(dut.stat_tri_backface_o),   u64(dut.stat_tri_no_samples_o), u64(dut.stat_tri_range_o),
-         u64(dut.stat_spans_o),          u64(dut.stat_frag_generated_o), u64(dut.stat_frag_depth_pass_o),
-         u64(dut.stat_frag_depth_fail_o)};
-    pf = {u64(dut.perf_setup_stall_o), u64(dut.perf_fifo_full_o),    u64(dut.perf_span_stall_o),
-          u64(dut.perf_span_wait_o),   u64(dut.perf_sample_stall_o), u64(dut.perf_pass_stall_o),
-          u64(dut.perf_out_stall_o)};
-  };
-  TxnOptions o;
-  o.unit = "backend";
-  o.run_name = run;
-  o.seed = h.seed;
-  o.in_gap_pct = h.gap;
-  o.out_stall_pct = h.stall;
+  fxr::tb::RtlRunOptions<Dut> o;
+  o.run = run;
   o.write_wave = write_wave;
-  o.drain_cycles = 400;  // the depth queue's failed samples and the memory's last responses
-  out.r = fxr::tb::run_txn<Dut>(v, nullptr, o, &hook);
-  out.depth = mem.words();
-  out.bad_addresses = mem.bad_addresses;
-  return out;
-}
-
-std::string stats_text(const Stats& s) {
-  std::string t;
-  for (int i = 0; i < kStats; ++i) t += std::string(i ? ", " : "") + kStatNames[i] + " " + std::to_string(s[(size_t)i]);
-  return t;
+  return fxr::tb::run_rtl<Dut>(d, v, h, o);
 }
 
 // Every check of one run: the stream (the harness), the buffer, the counters.
@@ -507,8 +312,12 @@ TEST(Backend, RandomTrianglesMatchTheModel) {
     const RtlRun k = run_rtl(dr, dr.v, Handshake{(uint64_t)(100 + d), 20, 20, 1, 10, 10}, dr.name);
     expect_run_matches(dr, k, dr.name);
     // Every function decides both ways (never: nothing passes; test off: nothing fails).
-    if (d != (int)fxr::DepthFunc::Never) EXPECT_GT(dr.want[8], 0u) << dr.name << ": nothing passed";
-    if (dr.st.depth_test) EXPECT_GT(dr.want[9], 0u) << dr.name << ": nothing failed";
+    if (d != (int)fxr::DepthFunc::Never) {
+      EXPECT_GT(dr.want[8], 0u) << dr.name << ": nothing passed";
+    }
+    if (dr.st.depth_test) {
+      EXPECT_GT(dr.want[9], 0u) << dr.name << ": nothing failed";
+    }
     tris += dr.want[0];
     frags += dr.fragments;
     for (int i = 0; i < kStats; ++i) total[(size_t)i] += dr.want[(size_t)i];

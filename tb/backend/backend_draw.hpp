@@ -1,0 +1,301 @@
+// tb/backend/backend_draw.hpp — a whole draw through rtl/fxr_raster_backend.sv (Verilator) and
+// the model's chain (model/unit/chain.hpp), shared by the back-end test (tb/backend/backend_test.cpp)
+// and the user's co-simulation (tb/cosim/cosim_main.cpp, `fxraster cosim`; docs/rtl.md, "fxraster
+// cosim"):
+//   model_draw()  runs the model's chain on a draw's triangles and collects, from its taps, the
+//                 stream the back end is driven with (setup.in), every record at the back end's
+//                 stage boundaries (setup.out, traverse.out, interp.out, depth.out, divide.out),
+//                 the final depth buffer and the statistics the counter registers must hold;
+//   run_rtl()     drives that stream into a verilated fxr_raster_backend (any prefix) through the
+//                 transaction harness (tb/txn_harness.hpp) with the draw state, the depth memory
+//                 (tb/depth_mem.hpp), random gaps, back-pressure and memory latency, and reads the
+//                 counter registers.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <cstdio>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "depth_mem.hpp"
+#include "model/unit/chain.hpp"
+#include "model/vectors/codegen.hpp"
+#include "model/vectors/record_vectors.hpp"
+#include "model/vectors/scene_dump.hpp"
+#include "txn/draw_state_ports.hpp"
+#include "txn_harness.hpp"
+
+namespace fxr::tb {
+
+// The varyings the RTL was generated for (fxr_rec_pkg::NumVaryings, `fxraster layout
+// --emit-records-sv` at its default): a draw with fewer runs with this many (the extra varyings
+// are the scene's zeros), so the records fit the ports.
+constexpr int kRtlVaryings = fxr::kRecordPackageVaryings;
+
+// ---- the model's streams of one draw -----------------------------------------------------------
+
+// Counters of the back end (rtl/fxr_raster_backend.sv, stat_*_o), in this order.
+constexpr int kStats = 10;
+inline const char* const kStatNames[kStats] = {"tri_in",    "tri_drawn", "tri_zero_area",  "tri_backface",    "tri_no_samples",
+                                               "tri_range", "spans",     "frag_generated", "frag_depth_pass", "frag_depth_fail"};
+using Stats = std::array<uint64_t, kStats>;
+
+// The back end's stage boundaries, in pipeline order: the records each stage emits.
+constexpr int kTaps = 5;
+inline const char* const kTapNames[kTaps] = {"setup", "traverse", "interp", "depth", "divide"};
+
+// The rows of one boundary: (seq, record fields), seq the record's index in the stream.
+struct TapStream {
+  VecLayout lay;
+  uint64_t rows = 0;
+  std::vector<vec_word> data;
+  VecRow row(uint64_t r) const {
+    const size_t n = lay.size();
+    return VecRow(data.begin() + (ptrdiff_t)(r * n), data.begin() + (ptrdiff_t)((r + 1) * n));
+  }
+};
+constexpr size_t kTapHeaderFields = 1;
+
+// Taps: setup's inputs become the rows of an in-memory "setup.in" (txn, n_out, SetupTriangle),
+// the divider's outputs the rows of "backend.out" (txn, seq, last, Fragment) with txn the
+// setup input they came from — the transaction-dump rules (model/vectors/scene_dump.hpp); and
+// every stage's outputs the rows of its TapStream.
+struct BackendTaps {
+  RecordShape shape;
+  SceneStageVectors v;
+  std::vector<SetupTriangle> tris;
+  std::array<TapStream, kTaps> taps;
+  uint64_t spans = 0;
+  uint64_t n_out = 0;
+  VecRow in_row, out_row, tap_row;
+  bool out_pending = false;
+
+  template <class R>
+  void tap_layout(int k) {
+    std::vector<VecField> f = {{"seq", VecDir::Out, kTxnIdBits, false, "index in the boundary's stream"}};
+    append_record_fields<R>(shape, VecDir::Out, f);
+    taps[(size_t)k].lay = VecLayout(f);
+  }
+  BackendTaps(const Config& cfg, int varyings, const std::string& name) : shape{cfg, varyings} {
+    std::vector<VecField> fi = {{"txn", VecDir::In, kTxnIdBits, false, "transaction id"},
+                                {"n_out", VecDir::In, kTxnCountBits, false, "fragments of this triangle"}};
+    append_record_fields<SetupTriangle>(shape, VecDir::In, fi);
+    std::vector<VecField> fo = {{"txn", VecDir::Out, kTxnIdBits, false, "setup.in txn"},
+                                {"seq", VecDir::Out, kTxnCountBits, false, "index among the triangle's"},
+                                {"last", VecDir::Out, 1, false, "last of the triangle"}};
+    append_record_fields<Fragment>(shape, VecDir::Out, fo);
+    v.stage = "backend";
+    v.cfg = cfg;
+    v.num_varyings = varyings;
+    v.in = SceneStageFile{name + ":setup.in", VecLayout(fi), kTxnInHeaderFields, 0, {}};
+    v.out = SceneStageFile{name + ":backend.out", VecLayout(fo), kTxnOutHeaderFields, 0, {}};
+    in_row.assign(v.in.lay.size(), 0);
+    out_row.assign(v.out.lay.size(), 0);
+    tap_layout<TriangleEquations>(0);
+    tap_layout<Span>(1);
+    tap_layout<PlaneSample>(2);
+    tap_layout<PlaneSample>(3);
+    tap_layout<Fragment>(4);
+  }
+  template <class R>
+  void tap(int k, const R& r) {
+    TapStream& t = taps[(size_t)k];
+    tap_row.assign(t.lay.size(), 0);
+    tap_row[0] = t.rows;
+    pack_record(r, shape, tap_row, kTapHeaderFields, kTapNames[k]);
+    t.data.insert(t.data.end(), tap_row.begin(), tap_row.end());
+    ++t.rows;
+  }
+  void flush_out(bool last) {
+    if (!out_pending) return;
+    out_row[2] = last;
+    v.out.data.insert(v.out.data.end(), out_row.begin(), out_row.end());
+    ++v.out.rows;
+    out_pending = false;
+  }
+  void flush_in() {
+    if (v.in.rows == 0 && tris.empty()) return;
+    v.in.data[(v.in.rows - 1) * v.in.lay.size() + 1] = n_out;
+  }
+  template <class S>
+  void in(const typename S::In& r) {
+    if constexpr (std::is_same_v<S, SetupStage>) {
+      flush_out(true);
+      if (v.in.rows) flush_in();
+      in_row[0] = v.in.rows;
+      in_row[1] = 0;
+      pack_record(r, shape, in_row, kTxnInHeaderFields, v.in.path);
+      v.in.data.insert(v.in.data.end(), in_row.begin(), in_row.end());
+      ++v.in.rows;
+      tris.push_back(r);
+      n_out = 0;
+    }
+  }
+  template <class S>
+  void out(const typename S::Out& r) {
+    if constexpr (std::is_same_v<S, SetupStage>) tap(0, r);
+    if constexpr (std::is_same_v<S, TraverseStage>) {
+      ++spans;
+      tap(1, r);
+    }
+    if constexpr (std::is_same_v<S, InterpStage>) tap(2, r);
+    if constexpr (std::is_same_v<S, DepthStage>) tap(3, r);
+    if constexpr (std::is_same_v<S, DivideStage>) {
+      tap(4, r);
+      flush_out(false);
+      out_row[0] = v.in.rows - 1;
+      out_row[1] = n_out++;
+      pack_record(r, shape, out_row, kTxnOutHeaderFields, v.out.path);
+      out_pending = true;
+    }
+  }
+  void finish() {
+    flush_out(true);
+    if (v.in.rows) flush_in();
+  }
+};
+
+struct NullSink : FragmentSink {
+  void emit(const Fragment&) override {}
+};
+
+struct Draw {
+  std::string name;
+  DrawState st;
+  SceneStageVectors v;
+  std::array<TapStream, kTaps> taps;
+  std::vector<uint32_t> depth;  // the model's final buffer
+  uint32_t clear = 0;           // the buffer's value before the draw (both sides)
+  Stats want{};
+  uint64_t fragments = 0;  // divide.out rows
+  RasterStats stats;       // the model's statistics of the draw
+};
+
+// Runs the model's chain on `tris` and collects what the back end must reproduce. The depth
+// buffer starts at `clear` (the unit's clear value, the maximum code, when negative): the chain of
+// run_raster_unit_to on a buffer filled after frame_begin.
+inline Draw model_draw(const std::string& name, const Config& cfg, DrawState st, const std::vector<ClipTriangle>& tris,
+                       int64_t clear = -1) {
+  st.num_varyings = kRtlVaryings;
+  BackendTaps taps(cfg, kRtlVaryings, name);
+  FrameOutput f;
+  NullSink sink;  // varyings computed (the planes of every varying), fragments not kept
+  frame_begin(cfg, st, f);
+  const uint32_t clear_code = clear < 0 ? (uint32_t)depth_max_code(cfg.raster) : (uint32_t)clear;
+  std::fill(f.depth.begin(), f.depth.end(), clear_code);
+  {
+    UnitChain<BackendTaps> chain(cfg, st, f, &sink, taps);
+    for (size_t p = 0; p < tris.size(); ++p) chain.draw(tris[p], (uint32_t)p);
+  }
+  taps.finish();
+  Draw d;
+  d.clear = clear_code;
+  d.name = name;
+  d.st = st;
+  d.v = std::move(taps.v);
+  d.taps = std::move(taps.taps);
+  d.depth = std::move(f.depth);
+  d.fragments = d.v.out.rows;
+  d.stats = f.stats;
+  // Setup outcomes per triangle: SetupStage stepped again on setup's inputs (the chain's
+  // accounting is per primitive, RasterStats).
+  SetupStage stage(cfg, st, true);
+  std::array<uint64_t, 5> oc{};
+  for (const SetupTriangle& t : taps.tris) ++oc[(size_t)stage.step(t, [](const TriangleEquations&) {})];
+  d.want = {taps.tris.size(), oc[0], oc[1], oc[2], oc[3], oc[4], taps.spans, f.stats.fragments_generated,
+            f.stats.fragments_depth_pass, f.stats.fragments_depth_fail};
+  return d;
+}
+
+// ---- the RTL run -------------------------------------------------------------------------------
+
+struct Handshake {
+  uint64_t seed = 1;
+  unsigned gap = 0, stall = 0;                       // input gaps, output back-pressure (%)
+  unsigned lat_min = 1, lat_max = 1, req_stall = 0;  // depth memory
+};
+
+constexpr int kPerf = 7;
+inline const char* const kPerfNames[kPerf] = {"setup_stall", "fifo_full",  "span_stall", "span_wait",
+                                              "sample_stall", "pass_stall", "out_stall"};
+using Perf = std::array<uint64_t, kPerf>;
+
+struct RtlRun {
+  TxnResult r;
+  Stats stats{};
+  Perf perf{};
+  std::vector<uint32_t> depth;
+  uint64_t bad_addresses = 0;
+};
+
+template <class T>
+uint64_t u64(const T& x) {
+  return (uint64_t)x;
+}
+
+// The options of run_rtl beyond the handshake: the harness's (print, waveform, output folder)
+// and an observer of every cycle (the co-simulation's stage taps).
+template <class Dut>
+struct RtlRunOptions {
+  std::string run;
+  bool write_wave = true;
+  bool print = true;
+  std::function<void()> reset;        // before each simulation (a failed run is replayed)
+  std::function<void(Dut&)> observe;  // after the cycle's handshakes settled, before the edge
+  std::function<TxnResult(const SceneStageVectors&, const TxnOptions&, const TxnHook<Dut>&)> simulate;  // default: run_txn
+};
+
+template <class Dut>
+RtlRun run_rtl(const Draw& d, const SceneStageVectors& v, const Handshake& h, const RtlRunOptions<Dut>& ro) {
+  RtlRun out;
+  DepthMemOptions mo;
+  mo.seed = 1000 + h.seed;
+  mo.min_latency = h.lat_min;
+  mo.max_latency = h.lat_max;
+  mo.req_stall_pct = h.req_stall;
+  mo.wr_stall_pct = h.req_stall;  // the write channel (DepthWritePort)
+  DepthMem mem((size_t)d.st.viewport_w * (size_t)d.st.viewport_h, d.clear, mo);
+  Stats& s = out.stats;
+  TxnHook<Dut> hook;
+  Perf& pf = out.perf;
+  hook.reset = [&] {
+    mem.reset();
+    s = Stats{};
+    pf = Perf{};
+    if (ro.reset) ro.reset();
+  };
+  const int wib = v.cfg.raster.window_int_bits;
+  hook.drive = [&](Dut& dut) {
+    drive_draw_state(dut, d.st, wib);
+    mem.drive(dut);
+  };
+  hook.observe = [&](Dut& dut) {
+    mem.observe(dut);
+    s = {u64(dut.stat_tri_in_o),       u64(dut.stat_tri_drawn_o),      u64(dut.stat_tri_zero_area_o),
+         u64(dut.stat_tri_backface_o), u64(dut.stat_tri_no_samples_o), u64(dut.stat_tri_range_o),
+         u64(dut.stat_spans_o),        u64(dut.stat_frag_generated_o), u64(dut.stat_frag_depth_pass_o),
+         u64(dut.stat_frag_depth_fail_o)};
+    pf = {u64(dut.perf_setup_stall_o), u64(dut.perf_fifo_full_o),    u64(dut.perf_span_stall_o),
+          u64(dut.perf_span_wait_o),   u64(dut.perf_sample_stall_o), u64(dut.perf_pass_stall_o),
+          u64(dut.perf_out_stall_o)};
+    if (ro.observe) ro.observe(dut);
+  };
+  TxnOptions o = txn_options("backend", ro.run, h.seed, h.gap, h.stall);
+  o.write_wave = ro.write_wave;
+  o.print = ro.print;
+  o.drain_cycles = 400;  // the depth queue's failed samples and the memory's last responses
+  out.r = ro.simulate ? ro.simulate(v, o, hook) : run_txn<Dut>(v, nullptr, o, &hook);
+  out.depth = mem.words();
+  out.bad_addresses = mem.bad_addresses;
+  return out;
+}
+
+inline std::string stats_text(const Stats& s) {
+  std::string t;
+  for (int i = 0; i < kStats; ++i) t += std::string(i ? ", " : "") + kStatNames[i] + " " + std::to_string(s[(size_t)i]);
+  return t;
+}
+
+}  // namespace fxr::tb
