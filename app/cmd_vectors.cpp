@@ -8,6 +8,7 @@
 #include "command.hpp"
 #include "frontend/scene.hpp"
 #include "model/config/config.hpp"
+#include "model/config/json_input.hpp"
 #include "model/unit/raster_unit.hpp"
 #include "model/vectors/scene_dump.hpp"
 #include "model/vectors/vectors.hpp"
@@ -26,6 +27,8 @@ struct Opts {
   bool use_default = false, no_bunny = false, wireframe = false;
   int width = 0, height = 0;
   uint64_t max_fragments = 0;
+  std::string state;                // scene: JSON object of "state" fields replaced
+  std::vector<std::string> stages;  // scene: the stages written (default: all)
 };
 
 namespace fs = std::filesystem;
@@ -55,13 +58,17 @@ int run_scene(const Opts& o) {
   so.height = o.height;
   so.no_optional = o.no_bunny;
   so.wireframe = o.wireframe;
+  if (!o.state.empty()) {
+    so.state = fxr::parse_json_input(o.state, "--state");
+    if (!so.state.is_object()) throw fxr::ConfigError("--state: expected a JSON object of \"state\" fields");
+  }
   if (o.wireframe && !o.use_default)
     throw fxr::ConfigError("vectors scene: --wireframe selects the default scene's wireframe variant: give it with "
                            "--default (a scene file gives its own \"lines\" objects or mesh \"wireframe\")");
   fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.args[1], so);
   if (!o.config.empty()) fxr::apply_config_file(sc, o.config);
   const fxr::SceneDump d =
-      fxr::dump_scene_vectors(sc.config, sc.state, sc.tris, sc.line_state, sc.lines, o.out, sc.name);
+      fxr::dump_scene_vectors(sc.config, sc.state, sc.tris, sc.line_state, sc.lines, o.out, sc.name, o.stages);
   uint64_t total = 0;
   for (const auto& f : d.files) total += f.rows;
   std::cout << "wrote " << o.out << ": " << d.files.size() << " files, " << total << " transactions ("
@@ -161,6 +168,13 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_flag("--wireframe", o->wireframe,
                "scene, with --default: the default scene's wireframe variant (the face's edges and the bunny's "
                "silhouette as line segments, as `render --default --wireframe`)");
+  sub.add_option("--state", o->state,
+                 "scene: a JSON object of draw-state fields replacing the scene's \"state\" ones, e.g. "
+                 "'{\"depth_func\": \"greater\", \"cull\": \"front\"}' (docs/scene-format.md)");
+  sub.add_option("--stages", o->stages,
+                 "scene: write only these stages' files (comma-separated names, e.g. setup,traverse,interp,depth,divide; "
+                 "default: every stage)")
+      ->delimiter(',');
   sub.add_option("--width", o->width, "scene: viewport width (overrides the scene's)")->check(CLI::Range(1, 16384));
   sub.add_option("--height", o->height, "scene: viewport height (overrides the scene's)")->check(CLI::Range(1, 16384));
   sub.footer(

@@ -694,7 +694,12 @@ glm::dvec2 texgen(TexGen mode, const glm::dvec3& q) {
 Scene parse_scene(const std::string& text, const std::string& where, const std::string& base_dir,
                   const SceneOptions& opt) {
   // Syntax errors with line:column, nesting bounded, numbers beyond a double named by path.
-  const json doc = parse_json_input(text, where);
+  json doc = parse_json_input(text, where);
+  if (!opt.state.is_object()) throw ConfigError(where + ": the state override is not a JSON object");
+  if (!opt.state.empty() && doc.is_object()) {  // SceneOptions::state: the fields replaced, then read as the scene's
+    if (!doc.contains("state")) doc["state"] = json::object();
+    if (doc["state"].is_object()) doc["state"].update(opt.state);
+  }
   const Node root{doc, where, ""};
   root.expect_object({"version", "name", "viewport", "config", "state", "line_state", "background", "camera",
                       "texture", "varyings", "objects"});

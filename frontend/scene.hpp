@@ -63,6 +63,10 @@ struct SceneOptions {
   int width = 0, height = 0;  // > 0: override the viewport size (the camera aspect follows)
   bool no_optional = false;   // skip objects marked "optional" (e.g. the bunny)
   bool wireframe = false;     // default scene only: the face's edges and the bunny's silhouette as lines
+  // Fields of the scene's "state" object replaced (or added) before it is read, with the same
+  // names, values and checks (`fxraster vectors scene --state JSON`; errors name the scene and
+  // /state/<field>). Must be a JSON object; empty: the scene's own state.
+  nlohmann::json state = nlohmann::json::object();
 };
 
 // `--config F` of the commands that read a scene: the fields of configuration file F override

@@ -157,13 +157,15 @@ struct StageWriter {
 
 class DumpTaps {
  public:
-  DumpTaps(const Config& cfg, const DrawState& st, const std::string& dir) : shape_{cfg, st.num_varyings} {
+  DumpTaps(const Config& cfg, const DrawState& st, const std::string& dir, const std::array<bool, kNumStages>& on)
+      : shape_{cfg, st.num_varyings} {
     for_each_stage([&](auto ic) {
       using S = std::tuple_element_t<decltype(ic)::value, Stages>;
       StageWriter& w = w_[decltype(ic)::value];
       w.stage = S::kName;
       w.in_lay = in_layout<S>(shape_);
       w.out_lay = out_layout<S>(shape_);
+      if (!on[decltype(ic)::value]) return;  // not written (its outputs are still counted: ctx)
       w.in_w = std::make_unique<VecWriter>(dir + "/" + file_name(w.stage, "in"), w.in_lay);
       w.out_w = std::make_unique<VecWriter>(dir + "/" + file_name(w.stage, "out"), w.out_lay);
       w.in_row.assign(w.in_lay.size(), 0);
@@ -176,6 +178,7 @@ class DumpTaps {
   template <class S>
   void in(const typename S::In& r) {
     StageWriter& w = w_[stage_index<S>()];
+    if (!w.in_w) return;
     w.flush_out(true);
     w.flush_in();
     w.check_id(w.next_txn, kTxnIdBits, "inputs");
@@ -189,19 +192,21 @@ class DumpTaps {
   template <class S>
   void out(const typename S::Out& r) {
     StageWriter& w = w_[stage_index<S>()];
+    ++w.outs_total;
+    if (!w.out_w) return;
     w.flush_out(false);
     w.check_id(w.n_out, kTxnCountBits, "outputs of one input");
     w.out_row[kOutTxn] = w.next_txn - 1;
     w.out_row[kOutSeq] = w.n_out++;
     pack_record(r, shape_, w.out_row, kOutHeader, w.out_where);
     w.out_pending = true;
-    ++w.outs_total;
   }
 
   // Flushes and writes the manifests; returns the files.
   std::vector<SceneDumpFile> finish(const Config& cfg, const std::string& scene_name) {
     std::vector<SceneDumpFile> files;
     for (auto& w : w_) {
+      if (!w.in_w) continue;
       w.flush_out(true);
       w.flush_in();
       for (int side = 0; side < 2; ++side) {
@@ -269,8 +274,33 @@ SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::
 }
 
 SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
-                             const DrawState& line_st, const std::vector<ClipLine>& lines, const std::string& dir_arg,
+                             const DrawState& line_st, const std::vector<ClipLine>& lines, const std::string& dir,
                              const std::string& scene_name) {
+  return dump_scene_vectors(cfg, st, tris, line_st, lines, dir, scene_name, {});
+}
+
+SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
+                             const DrawState& line_st, const std::vector<ClipLine>& lines, const std::string& dir_arg,
+                             const std::string& scene_name, const std::vector<std::string>& stages) {
+  std::array<bool, kNumStages> on{};
+  on.fill(stages.empty());
+  for (const std::string& n : stages) {
+    bool found = false;
+    for_each_stage([&](auto ic) {
+      if (n != std::tuple_element_t<decltype(ic)::value, Stages>::kName) return;
+      if (on[decltype(ic)::value]) throw ConfigError("scene dump: stage '" + n + "' named twice");
+      on[decltype(ic)::value] = found = true;
+    });
+    if (!found) throw ConfigError("scene dump: no stage named '" + n + "' (the stages: convert … divide, line_convert … line_divide)");
+  }
+  auto need = [&](size_t a, size_t b, const char* why) {
+    if (on[a] && !on[b])
+      throw ConfigError(std::string("scene dump: stage '") + scene_dump_stages()[a] + "' needs '" +
+                        scene_dump_stages()[b] + "' in the dump (" + why + ")");
+  };
+  need(stage_index<InterpStage>(), stage_index<SetupStage>(), "its ctx column names setup.out lines");
+  need(stage_index<LineInterpStage>(), stage_index<LineSetupStage>(), "its ctx column names line_setup.out lines");
+  need(stage_index<LineDepthStage>(), stage_index<DepthStage>(), "it is re-stepped on the buffer the triangles left");
   validate(cfg, "configuration");
   if (line_st.num_varyings != st.num_varyings)  // one record shape for every file of the dump
     throw ConfigError("scene dump: the line draw state has " + std::to_string(line_st.num_varyings) +
@@ -293,7 +323,7 @@ SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::
   try {
     FrameOutput f;
     DiscardFragments sink;
-    DumpTaps taps(cfg, st, tmp.string());
+    DumpTaps taps(cfg, st, tmp.string(), on);
     run_raster_unit_to(cfg, st, tris, line_st, lines, f, &sink, taps);
     out.files = taps.finish(cfg, scene_name);
     out.stats = f.stats;
@@ -457,6 +487,34 @@ SceneManifest read_scene_manifest(const std::string& dir) {
 
 }  // namespace
 
+namespace {
+// The stages listed in scene.json "files" (both sides), as a mask in chain order.
+std::array<bool, kNumStages> stages_present(const json& j, const std::string& dir) {
+  std::array<bool, kNumStages> on{};
+  const std::string sp = dir + "/scene.json";
+  if (!j.contains("files") || !j.at("files").is_array()) throw ConfigError(sp + ": field 'files' is missing");
+  for (const json& f : j.at("files")) {
+    if (!f.is_object() || !f.contains("stage") || !f.at("stage").is_string())
+      throw ConfigError(sp + ": field 'files': an entry without 'stage'");
+    bool found = false;
+    for_each_stage([&](auto ic) {
+      if (f.at("stage") == std::tuple_element_t<decltype(ic)::value, Stages>::kName) on[decltype(ic)::value] = found = true;
+    });
+    if (!found) throw ConfigError(sp + ": field 'files': no stage named " + json_excerpt(f.at("stage")));
+  }
+  return on;
+}
+}  // namespace
+
+std::vector<std::string> scene_dump_stages_present(const std::string& dir) {
+  const SceneManifest m = read_scene_manifest(dir);
+  const std::array<bool, kNumStages> on = stages_present(m.j, dir);
+  std::vector<std::string> v;
+  for (size_t i = 0; i < kNumStages; ++i)
+    if (on[i]) v.push_back(scene_dump_stages()[i]);
+  return v;
+}
+
 DrawState load_scene_draw_state(const std::string& dir, bool lines) {
   const SceneManifest m = read_scene_manifest(dir);
   return lines ? m.line_st : m.st;
@@ -466,9 +524,12 @@ SceneStageVectors load_scene_stage(const std::string& dir, const std::string& st
   const SceneManifest m = read_scene_manifest(dir);
   const RecordShape shape{m.cfg, m.st.num_varyings};
   std::optional<SceneStageVectors> r;
+  const std::array<bool, kNumStages> on = stages_present(m.j, dir);
   for_each_stage([&](auto ic) {
     using S = std::tuple_element_t<decltype(ic)::value, Stages>;
     if (stage != S::kName) return;
+    if (!on[decltype(ic)::value])
+      throw ConfigError(dir + "/scene.json: the dump does not hold stage '" + stage + "' (written with a stage list)");
     LoadedFile in = load_file(dir, stage, "in", in_layout<S>(shape), m.j.at("config"));
     LoadedFile out = load_file(dir, stage, "out", out_layout<S>(shape), m.j.at("config"));
     check_headers(in, out);
@@ -489,9 +550,11 @@ RestepReport restep_scene_vectors(const std::string& dir, size_t max_report) {
   FrameOutput frame;
   frame_begin(cfg, m.st, frame);  // the depth stages' buffer, cleared (the triangles', then the lines')
   std::optional<LoadedFile> setup_out, line_setup_out;  // the interpolators' contexts
+  const std::array<bool, kNumStages> on = stages_present(j, dir);
 
   for_each_stage([&](auto ic) {
     using S = std::tuple_element_t<decltype(ic)::value, Stages>;
+    if (!on[decltype(ic)::value]) return;  // not in this dump (dump_scene_vectors' stage list)
     const std::string name = S::kName;
     const DrawState& st = kIsLineStage<S> ? m.line_st : m.st;
     const LoadedFile in = load_file(dir, name, "in", in_layout<S>(shape), j.at("config"));

@@ -79,6 +79,16 @@ SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::
 SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
                              const DrawState& line_st, const std::vector<ClipLine>& lines, const std::string& dir,
                              const std::string& scene_name);
+// The same, writing only the files of `stages` (stage names of scene_dump_stages(); empty: every
+// stage). The draw runs whole; scene.json's "files" lists what was written, and readers take the
+// stages present from it (restep_scene_vectors re-steps those, load_scene_stage refuses another).
+// A stage whose re-step needs another stage's file needs that stage too: interp needs setup
+// (ctx), line_interp line_setup, line_depth depth (the buffer the triangles left). Unknown or
+// repeated names, or a missing prerequisite: ConfigError. (The committed back-end vectors,
+// docs/vectors.md, are such subsets: fewer manifests.)
+SceneDump dump_scene_vectors(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
+                             const DrawState& line_st, const std::vector<ClipLine>& lines, const std::string& dir,
+                             const std::string& scene_name, const std::vector<std::string>& stages);
 
 // Re-reading and re-stepping a dump: every file is read and validated (manifest format, layout
 // equal to the records' layout at the dump's configuration, hex lines, transaction ids and
@@ -129,7 +139,10 @@ struct SceneStageVectors {
 // The draw state of a dump (scene.json "draw_state", or "line_draw_state" with lines = true),
 // read and range-checked by the same reader as load_scene_stage. Throws ConfigError naming the file.
 DrawState load_scene_draw_state(const std::string& dir, bool lines = false);
-// Throws ConfigError naming the file (and line / field) on any inconsistency.
+// The stages whose files a dump holds (scene.json "files"), in chain order.
+std::vector<std::string> scene_dump_stages_present(const std::string& dir);
+// Throws ConfigError naming the file (and line / field) on any inconsistency, or when the dump
+// does not hold the stage.
 SceneStageVectors load_scene_stage(const std::string& dir, const std::string& stage);
 
 }  // namespace fxr

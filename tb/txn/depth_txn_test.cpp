@@ -20,6 +20,7 @@
 #include "depth_mem.hpp"
 #include "model/stages/depth.hpp"
 #include "model/vectors/scene_dump.hpp"
+#include "txn/backend_sets.hpp"
 #include "txn_harness.hpp"
 
 namespace {
@@ -156,6 +157,15 @@ TEST(DepthTxn, DefaultSceneMatchesTheModel) { run_dump<Vfxr_depth>(kDefault, "de
 // The same with the separate write channel (WritePort = 1).
 TEST(DepthTxn, WritePortCommittedDumpMatchesTheModel) { run_dump<Vfxr_depth_wp>(kCommitted, "wp_committed", false); }
 TEST(DepthTxn, WritePortDefaultSceneMatchesTheModel) { run_dump<Vfxr_depth_wp>(kDefault, "wp_default", true); }
+// The committed back-end vectors: every depth function (vectors/scenes/backend_state/<func>),
+// and the directed geometric cases; both memory ports.
+TEST(DepthTxn, CommittedBackendSetsMatchTheModel) {
+  for (const auto& [dir, name] : fxr::tb::committed_backend_dumps()) {
+    SCOPED_TRACE(dir);
+    run_dump<Vfxr_depth>(dir, name, false);
+    run_dump<Vfxr_depth_wp>(dir, "wp_" + name, false);
+  }
+}
 
 // ---- directed cases ---------------------------------------------------------------------------
 

@@ -18,6 +18,7 @@
 #include "model/vectors/codegen.hpp"
 #include "model/config/config.hpp"
 #include "model/stages/divide.hpp"
+#include "txn/backend_sets.hpp"
 #include "txn_harness.hpp"
 
 namespace {
@@ -80,6 +81,25 @@ TEST(DivideTxn, CommittedDumpMatchesTheModel) {
   expect_stalls<Vfxr_divide>(v, "divide_committed");
   expect_rate<Vfxr_divide_lanes1>(v, cfg, 1, "divide_committed_lanes1");
   expect_stalls<Vfxr_divide_lanes1>(v, "divide_committed_lanes1");
+}
+
+// The committed back-end vectors (the fragments that pass in each; none under never / greater:
+// an empty stream must stay empty), both lane counts.
+TEST(DivideTxn, CommittedBackendSetsMatchTheModel) {
+  const fxr::Config cfg;
+  for (const auto& [dir, name] : fxr::tb::committed_backend_dumps()) {
+    const SceneStageVectors v = fxr::load_scene_stage(dir, "divide");
+    if (v.out.rows == 0) {
+      const TxnResult r = fxr::tb::run_txn<Vfxr_divide>(v, nullptr, opts("divide_" + name, 1, 0, 0));
+      EXPECT_TRUE(r.passed()) << dir;
+      EXPECT_EQ(r.outputs, 0u) << dir;
+      continue;
+    }
+    expect_rate<Vfxr_divide>(v, cfg, kVaryings, "divide_" + name);
+    expect_stalls<Vfxr_divide>(v, "divide_" + name);
+    expect_rate<Vfxr_divide_lanes1>(v, cfg, 1, "divide_" + name + "_lanes1");
+    expect_stalls<Vfxr_divide_lanes1>(v, "divide_" + name + "_lanes1");
+  }
 }
 
 TEST(DivideTxn, DefaultSceneMatchesTheModel) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "Vfxr_interp.h"
+#include "txn/backend_sets.hpp"
 #include "txn_harness.hpp"
 
 namespace {
@@ -47,6 +48,22 @@ TEST(InterpTxn, CommittedDumpMatchesTheModel) {
     EXPECT_TRUE(r.passed()) << "seed " << seed;
     EXPECT_EQ(r.outputs, v.out.rows);
     EXPECT_EQ(r.inputs, v.in.rows);
+  }
+}
+
+// The committed back-end vectors (every geometric case; perspective and affine draw states).
+TEST(InterpTxn, CommittedBackendSetsMatchTheModel) {
+  for (const auto& [dir, name] : fxr::tb::committed_backend_dumps()) {
+    const SceneStageVectors v = fxr::load_scene_stage(dir, "interp");
+    const SceneStageVectors setup = fxr::load_scene_stage(dir, "setup");
+    ASSERT_GT(v.out.rows, 0u) << dir;
+    for (auto [seed, gap, stall] : {std::tuple{1u, 0u, 0u}, {2u, 25u, 25u}, {3u, 60u, 70u}}) {
+      const TxnResult r = fxr::tb::run_txn<Vfxr_interp>(
+          v, &setup.out, opts("interp_" + name + "_" + std::to_string(seed), seed, gap, stall));
+      EXPECT_TRUE(r.passed()) << dir << " seed " << seed;
+      EXPECT_EQ(r.outputs, v.out.rows) << dir;
+      EXPECT_EQ(r.inputs, v.in.rows) << dir;
+    }
   }
 }
 

@@ -14,6 +14,7 @@
 #include "model/stages/setup.hpp"
 #include "model/vectors/record_vectors.hpp"
 #include "txn/draw_state_ports.hpp"
+#include "txn/backend_sets.hpp"
 #include "txn_harness.hpp"
 
 namespace {
@@ -104,6 +105,15 @@ TEST(SetupTxn, CommittedDumpMatchesTheModel) {
 }
 
 TEST(SetupTxn, DefaultSceneMatchesTheModel) { check_dump(kDefault, "default"); }
+
+// The committed back-end vectors: the directed geometric cases and every draw state (cull mode,
+// front face) of vectors/scenes/backend_state/.
+TEST(SetupTxn, CommittedBackendSetsMatchTheModel) {
+  for (const auto& [dir, name] : fxr::tb::committed_backend_dumps()) {
+    SCOPED_TRACE(dir);
+    check_dump(dir, name);
+  }
+}
 
 // The checker can fail: one bit of area2 in row 2 of the expected equations flipped.
 TEST(SetupTxn, CorruptedExpectedRowIsReported) {

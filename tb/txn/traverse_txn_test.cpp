@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "Vfxr_traverse.h"
+#include "txn/backend_sets.hpp"
 #include "txn_harness.hpp"
 
 namespace {
@@ -38,6 +39,22 @@ TEST(TraverseTxn, CommittedDumpMatchesTheModel) {
     EXPECT_TRUE(r.passed()) << "seed " << seed;
     EXPECT_EQ(r.outputs, v.out.rows);
     EXPECT_EQ(r.inputs, v.in.rows);
+  }
+}
+
+// The committed back-end vectors (top-left ties, 1-pixel, sub-pixel, slivers, full-viewport and
+// guard-band triangles, w ratio 10^6; every draw state).
+TEST(TraverseTxn, CommittedBackendSetsMatchTheModel) {
+  for (const auto& [dir, name] : fxr::tb::committed_backend_dumps()) {
+    const SceneStageVectors v = fxr::load_scene_stage(dir, "traverse");
+    ASSERT_GT(v.out.rows, 0u) << dir;
+    for (auto [seed, gap, stall] : {std::tuple{1u, 0u, 0u}, {2u, 25u, 25u}, {3u, 60u, 70u}}) {
+      const TxnResult r =
+          fxr::tb::run_txn<Vfxr_traverse>(v, nullptr, opts("traverse_" + name + "_" + std::to_string(seed), seed, gap, stall));
+      EXPECT_TRUE(r.passed()) << dir << " seed " << seed;
+      EXPECT_EQ(r.outputs, v.out.rows) << dir;
+      EXPECT_EQ(r.inputs, v.in.rows) << dir;
+    }
   }
 }
 
