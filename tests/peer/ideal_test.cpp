@@ -249,6 +249,9 @@ const std::vector<CaseResult>& results(OsmesaPeer* peer, bool old_config) {
   Config cfg;
   if (old_config) cfg.raster.attr_subpixel_bits = cfg.raster.subpixel_bits;  // the model before issue 8
   cfg.raster.attr_subpixel_bits = env_int("FXR_IDEAL_ATTR", cfg.raster.attr_subpixel_bits);
+  // FXR_IDEAL_BLOCK=B: interp_block_bits of the tables (docs/rtl.md, "Plane width": the narrower
+  // hardware configuration's error against the ideal).
+  cfg.raster.interp_block_bits = env_int("FXR_IDEAL_BLOCK", cfg.raster.interp_block_bits);
   // FXR_IDEAL_DIV=shared_recip (or recip_mul, radix2): the divider algorithm of the tables
   // (docs/pipeline.md stage 9; the goals below are stated for the default, radix2).
   if (const char* a = std::getenv("FXR_IDEAL_DIV")) {
@@ -259,9 +262,10 @@ const std::vector<CaseResult>& results(OsmesaPeer* peer, bool old_config) {
     else ADD_FAILURE() << "FXR_IDEAL_DIV=" << s << ": not one of radix2, recip_mul, shared_recip";
   }
   std::printf("configuration: attr_subpixel_bits %d (subpixel_bits %d), attr_coord_bits %d, attr_sig_bits %d, "
-              "div %s; size %d, at most %zu pixels per scene\n",
+              "interp_block_bits %d, div %s; size %d, at most %zu pixels per scene\n",
               cfg.raster.attr_subpixel_bits, cfg.raster.subpixel_bits, cfg.raster.attr_coord_bits,
-              cfg.raster.attr_sig_bits, div_label(cfg.div).c_str(), suite_size(), suite_samples());
+              cfg.raster.attr_sig_bits, cfg.raster.interp_block_bits, div_label(cfg.div).c_str(), suite_size(),
+              suite_samples());
   std::vector<CaseResult> out;
   for (const NamedScene& s : suite(suite_size())) {
     out.push_back(measure(peer, s.name, s.st, s.tris, cfg, suite_samples()));
