@@ -193,25 +193,7 @@ ${diff}    return \"\";
 ")
 
 # 3. Compile and run.
-execute_process(COMMAND ${IVERILOG} -g2012 -s stage_txn_tb -I "${WORK}" -o "${WORK}/stage_txn_tb.vvp"
-                        -y "${WORK}/rtl" -Y .sv ${PKGS} "${WORK}/rec_import.sv"
-                        "${WORK}/rtl/fxr_${STAGE}.sv" "${TB}"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "iverilog failed:\n${out}${err}")
-endif()
-set(plus +in=${DUMP}/${STAGE}.in.hex +out=${DUMP}/${STAGE}.out.hex +ctx=${ctx_file} +seed=${SEED})
-if(DEFINED CORRUPT)
-  list(APPEND plus +corrupt=${CORRUPT})
-endif()
-execute_process(COMMAND ${VVP} -n "${WORK}/stage_txn_tb.vvp" ${plus} RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
-message("${log}${err}")
-string(REGEX MATCHALL "MISMATCH[^\n]*" mism "${log}")
-list(LENGTH mism nmism)
-if(DEFINED CORRUPT)
-  if(NOT log MATCHES "\nFAILED" OR NOT nmism EQUAL 1 OR NOT log MATCHES "MISMATCH ${STAGE} row=${CORRUPT} ")
-    message(FATAL_ERROR "the corrupted row ${CORRUPT} was not reported as exactly one mismatch")
-  endif()
-elseif(NOT log MATCHES "\nPASSED" OR nmism GREATER 0)
-  message(FATAL_ERROR "stage_txn_tb (${STAGE}) failed")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/txn_check.cmake)
+fxr_icarus_txn(stage_txn_tb ${STAGE} "${WORK}/stage_txn_tb.vvp"
+               "-I;${WORK};-y;${WORK}/rtl;-Y;.sv;${PKGS};${WORK}/rec_import.sv;${WORK}/rtl/fxr_${STAGE}.sv;${TB}"
+               "+in=${DUMP}/${STAGE}.in.hex;+out=${DUMP}/${STAGE}.out.hex;+ctx=${ctx_file};+seed=${SEED}")
