@@ -36,6 +36,7 @@ nlohmann::json SignedStat::to_json() const {
 namespace {
 
 struct Picked {
+  uint64_t index;
   int32_t x, y;
   uint32_t prim, depth;
   FxFloat var[kMaxVaryings];
@@ -43,14 +44,19 @@ struct Picked {
 
 // Streams the model's fragments; keeps those whose index is in the evenly spaced sample.
 struct SampleSink final : FragmentSink {
-  uint64_t n = 0, total = 0, want = 0;
+  uint64_t n = 0, total = 0, want = 0, regular = 0;
   std::vector<Picked>* out = nullptr;
-  uint64_t next_pick() const { return want == 0 ? 0 : (uint64_t)((unsigned __int128)out->size() * total / want); }
+  const std::vector<uint64_t>* extra = nullptr;
+  uint64_t next_pick() const { return want == 0 ? 0 : (uint64_t)((unsigned __int128)regular * total / want); }
   void emit(const Fragment& f) override {
-    if (out && out->size() < (want == 0 ? total : want) && (want == 0 || n == next_pick())) {
-      Picked p{f.x, f.y, f.prim, f.depth, {}};
-      std::copy(f.var, f.var + kMaxVaryings, p.var);
-      out->push_back(p);
+    if (out) {
+      const bool reg = want == 0 || (regular < want && n == next_pick());
+      if (reg || (extra && std::binary_search(extra->begin(), extra->end(), n))) {
+        Picked p{n, f.x, f.y, f.prim, f.depth, {}};
+        std::copy(f.var, f.var + kMaxVaryings, p.var);
+        out->push_back(p);
+      }
+      regular += reg;
     }
     ++n;
   }
@@ -110,6 +116,7 @@ BudgetResult run_budget(const Scene& sc, const BudgetOptions& o) {
     s.total = count.n;
     s.want = o.samples <= 0 || (uint64_t)o.samples >= count.n ? 0 : (uint64_t)o.samples;
     s.out = &picked;
+    s.extra = &o.extra;
     run_model(sc, s);
   }
   r.sampled = picked.size();
@@ -200,6 +207,10 @@ BudgetResult run_budget(const Scene& sc, const BudgetOptions& o) {
     r.not_exactly_covered += !L.covered;
     r.texel_differs += L.texel_differs;
     BudgetFragment bf;
+    bf.index = picked[i].index;
+    bf.texel_differs = L.texel_differs;
+    bf.abs.assign(nout, 0);
+    for (int k = 0; k < nv; ++k) bf.abs[k + 1] = L.err[(size_t)nout + k];
     bf.x = picked[i].x;
     bf.y = picked[i].y;
     bf.prim = picked[i].prim;

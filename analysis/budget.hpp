@@ -33,6 +33,7 @@ struct BudgetOptions {
   int threads = 1;      // the result is the same for any count
   bool shares = true;   // false: only the error with every point active (fxraster plan)
   bool checks = true;   // false: skip the all-exact self-check (fxraster plan)
+  std::vector<uint64_t> extra;  // sorted output indices sampled in addition (fxraster plan's failing fragments)
 };
 
 // One output of the unit: depth (LSB) or a varying (ulps of a quot_bits significand; also the
@@ -51,9 +52,12 @@ struct BudgetOutput {
 };
 
 struct BudgetFragment {
+  uint64_t index = 0;       // position in the model's output order
   int32_t x = 0, y = 0;
   uint32_t prim = 0;
   bool exact_covered = true;
+  bool texel_differs = false;
+  std::vector<double> abs;  // per output: the absolute error (depth: 0)
   // Per output: error, then share per point, then residual.
   std::vector<double> err, share, residual;
 };

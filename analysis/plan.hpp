@@ -76,6 +76,10 @@ struct MinimalityRow {
 
 struct PlanResult {
   PlanEval start, chosen;
+  bool widened = false;
+  PlanEval verified;        // the chosen configuration measured on every fragment of every scene
+  int rounds = 0;           // search rounds (a round's failing fragments join the next round's sample)
+  size_t total_evaluated = 0;  // the start missed the target: the search began at the widest configuration
   std::vector<PlanEval> evaluated;  // every distinct configuration, in evaluation order
   std::vector<MinimalityRow> minimality;
   std::vector<std::string> scenes;

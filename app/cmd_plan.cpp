@@ -71,11 +71,11 @@ int run(const Opts& o) {
   }
   if (!o.quiet)
     std::cout << "fxraster plan: start cost " << r.start.cost << (r.start.meets ? " (meets)" : " (misses)") << ", plan cost "
-              << r.chosen.cost << (r.chosen.meets ? " (meets)" : " (misses)") << ", " << r.evaluated.size()
+              << r.chosen.cost << (r.verified.meets ? " (meets on every fragment)" : " (misses)") << ", " << r.total_evaluated
               << " configurations; wrote " << o.out << "/plan.md\n";
   bool minimal = true;
   for (const auto& m : r.minimality) minimal &= m.holds;
-  return r.chosen.meets && minimal ? 0 : 3;
+  return r.chosen.meets && r.verified.meets && minimal ? 0 : 3;
 }
 
 fxr::app::Runner setup(CLI::App& sub) {

@@ -254,3 +254,27 @@ TEST(Plan, ChosenIsCheaperMeetsTheTargetIsMinimalAndThreadIndependent) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Plan, AStartThatMissesWidensFirstAndAnUnreachableTargetIsReportedAsMissed) {
+  Scene sc = constructed({persp()});
+  sc.texture.image = Image(64, 64, 0);  // u, v in texels of a 64 × 64 texture
+  PlanOptions o;
+  o.samples = 150;
+  o.threads = 2;
+  // 24-bit u, v near 16 carry ~2^−20 · 16 · 64 ≈ 1e-3 texel; 32-bit ones 256 times less.
+  o.target = parse_plan_target("u,v <= 2e-5 texel");
+  const PlanResult a = run_plan({sc}, o);
+  EXPECT_FALSE(a.start.meets);
+  EXPECT_TRUE(a.widened);
+  EXPECT_TRUE(a.chosen.meets);
+  EXPECT_GT(a.chosen.cfg.raster.varying_out_sig_bits, sc.config.raster.varying_out_sig_bits);
+  // No output format makes the depth error against the exact value 0: unreachable, reported.
+  o.target = parse_plan_target("depth <= 0 LSB");
+  const PlanResult b = run_plan({sc}, o);
+  EXPECT_TRUE(b.widened);
+  EXPECT_FALSE(b.chosen.meets);
+}
+
+}  // namespace
