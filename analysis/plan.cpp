@@ -366,7 +366,12 @@ PlanResult run_plan(const std::vector<Scene>& scenes, const PlanOptions& o) {
     const PlanEval e = eval_batch({c}).front();
     if (!e.valid) m.verdict = "invalid configuration (validate() refuses it)";
     else if (e.cost >= best.cost) m.verdict = "cost does not fall (" + std::to_string(e.cost) + "): kept";
-    else if (!e.meets) m.verdict = "misses the target (ratio " + fmt_num(e.ratio) + ")";
+    else if (!e.meets) {
+      m.verdict = "misses the target:";
+      for (size_t i = 0; i < o.target.size(); ++i)
+        if (e.figure[i] > o.target[i].max)
+          m.verdict += " " + o.target[i].output + " " + fmt_num(e.figure[i]) + " " + o.target[i].unit;
+    }
     else m.verdict = "still meets the target at lower cost", m.holds = false;
     R.minimality.push_back(m);
   }
