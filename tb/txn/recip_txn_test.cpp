@@ -71,6 +71,11 @@ void run_dump(const std::string& dir, const std::string& name, uint64_t min_rows
 TEST(RecipTxn, CommittedDumpMatchesTheModel) { run_dump(kCommitted, "recip_committed_", 5); }
 
 TEST(RecipTxn, DefaultSceneMatchesTheModel) { run_dump(kDefault, "recip_default_", 1000); }
+// The committed back-end directed set (docs/vectors.md): a guard-band-sized triangle, w from
+// 10^-3 to 10^3 inside one triangle, zero-area and sub-pixel ones.
+TEST(RecipTxn, CommittedBackendDirectedSetMatchesTheModel) {
+  run_dump(std::string(FXR_SOURCE_DIR) + "/vectors/scenes/backend_directed", "recip_backend_directed_", 18);
+}
 
 // ---- directed rows ------------------------------------------------------------------------
 
