@@ -59,6 +59,18 @@ class DepthStage {
   // behind the buffer's memory port (depth.cpp; docs/rtl.md, "fxr_depth").
   static StageCost cost(const Config& cfg);
 
+  // The memory-dependent timing of rtl/fxr_depth.sv (the cycle model, docs/cycles.md), for a
+  // memory answering `mem_latency` clocks after a read request (cost()'s figures: 1):
+  // a sample's read is issued in its input clock, its entry reaches the queue head and leaves
+  // `head_clocks` later (response, compare), a passing one is out of the 2-entry output FIFO a
+  // clock after that (latency = head_clocks + 1). Read-after-write hazard (write mask on): a
+  // sample whose pixel is in the queue waits at the input until that entry has left and is taken
+  // the clock after. One read per clock; with the request port shared (no write channel) a
+  // passing sample's write takes a port slot too. One sample per clock while
+  // queue depth ≥ head_clocks + 1.
+  static int head_clocks(int mem_latency) { return mem_latency + 1; }
+  static int latency(int mem_latency) { return head_clocks(mem_latency) + 1; }
+
  private:
   DepthBufferView buf_;
   DepthFunc func_;

@@ -6,21 +6,21 @@
 
 namespace fxr {
 
-StageCost InterpStage::cost(const Config& cfg) {
+StageCost InterpStage::cost(const Config& cfg, int div_steps_per_clock) {
   // rtl/fxr_interp.sv (docs/rtl.md, "fxr_interp"), per plane of the record (1/w and kMaxVaryings
   // v/w; the RTL has the generated record's number) and the depth code. Front: the planes at the
   // span start, c + (x0 − i0)·dx + (y − j0)·dy, in the accepting clock ((window_int_bits + 1) ×
   // plane-width products); then the two floor divisions Z / den and z_dx / den in a restoring
-  // divider, kInterpDivStepsPerClock quotient bits per clock after one normalising clock, over
+  // divider, div_steps_per_clock quotient bits per clock after one normalising clock, over
   // the quotient's own bits only (about depth_bits + 1 for Z, the depth code); one clock hands
   // the span start to the back and accepts the next span. Back: one sample per clock (plane +=
   // dx; the depth quotient / remainder DDA; RNE and clamp of the code). Latency 3 + n, n =
-  // ceil((depth_bits + 1) / kInterpDivStepsPerClock); a span occupies the front 2 + n clocks
+  // ceil((depth_bits + 1) / div_steps_per_clock); a span occupies the front 2 + n clocks
   // (ii) and the back one clock per pixel (the two overlap).
   const RasterConfig& r = cfg.raster;
   const int ipb = interp_plane_bits(r), zpb = depth_plane_bits(r), zdb = depth_den_bits(r);
   const int pb = r.window_int_bits, np = kMaxVaryings + 1;
-  const int n = (r.depth_bits() + 1 + kInterpDivStepsPerClock - 1) / kInterpDivStepsPerClock;
+  const int n = (r.depth_bits() + 1 + div_steps_per_clock - 1) / div_steps_per_clock;
   StageCost c;
   c.latency = 3 + n;
   c.ii = 2 + n;
@@ -33,7 +33,7 @@ StageCost InterpStage::cost(const Config& cfg) {
   // Start sums and offsets, the divider lanes (subtract + compare per step), the sign fix, the
   // steps along x, the remainder DDA and the code's rounding / clamp.
   c.adder_bits = (int64_t)np * (2 * ipb + 2 * (pb + 1)) + 2 * zpb + 2 * (pb + 1) +
-                 2 * (int64_t)kInterpDivStepsPerClock * zpb + 2 * (zpb + zdb) + (int64_t)np * ipb +
+                 2 * (int64_t)div_steps_per_clock * zpb + 2 * (zpb + zdb) + (int64_t)np * ipb +
                  zpb + 2 * (zdb + 1) + 2 * (zdb + 1) + zpb + 2 * (zpb + 1);
   // Front: planes and dx, the lanes' remainder / shifted divisor / quotient; back: planes and dx,
   // q, dq, r, dr, den, the pixel fields.

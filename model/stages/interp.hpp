@@ -17,6 +17,7 @@
 // Affine mode (InterpMode::Affine, the wrong image of docs/references.md#seed-000-wrong-image): vw_k holds v_k itself and D = 2A.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "model/config/config.hpp"
@@ -135,7 +136,34 @@ class InterpStage {
 
   // rtl/fxr_interp.sv: the planes evaluated at the span start, the depth quotient / remainder
   // by a sequential divider, then one pixel per clock (interp.cpp; docs/rtl.md, "fxr_interp").
-  static StageCost cost(const Config& cfg);
+  static StageCost cost(const Config& cfg) { return cost(cfg, kInterpDivStepsPerClock); }
+  // With `div_steps_per_clock` quotient bits per clock (fxr_interp's DivStepsPerClock as an
+  // instance sets it: the back end's InterpDivSteps, ArchConfig::interp_div_steps).
+  static StageCost cost(const Config& cfg, int div_steps_per_clock);
+
+  // The data-dependent part for one span (the cycle model, docs/cycles.md): rtl/fxr_interp.sv's
+  // restoring divider iterates only the quotient's own bits, msb(|dividend|) − msb(den) + 1 (0
+  // when |dividend| < 2^msb(den)), for Z at the span start and for z_dx side by side; the front
+  // spends max(1, ⌈longer / div_steps_per_clock⌉) clocks dividing, so a span occupies it
+  // 2 + that (accept / normalise, divide, hand over in the clock the next span is accepted).
+  static int span_div_clocks(const Context& t, const In& in, int div_steps_per_clock) {
+    auto msb = [](i128 v) {
+      unsigned __int128 u = v < 0 ? (unsigned __int128)(-v) : (unsigned __int128)v;
+      int b = -1;
+      while (u != 0) u >>= 1, ++b;
+      return b;  // −1 for 0
+    };
+    const int md = msb(t.depth.den);
+    int bits = 0;
+    for (const i128 v : {t.depth.z.at(in.x0, in.y), t.depth.z.dx}) {
+      const int mv = msb(v);
+      if (mv >= 0 && mv >= md) bits = std::max(bits, mv - md + 1);
+    }
+    return std::max(1, (bits + div_steps_per_clock - 1) / div_steps_per_clock);
+  }
+  static int span_front_clocks(const Context& t, const In& in, int div_steps_per_clock) {
+    return 2 + span_div_clocks(t, in, div_steps_per_clock);
+  }
 
  private:
   int nv_;

@@ -129,6 +129,29 @@ class TraverseStage {
   // (docs/rtl.md, "fxr_traverse"); cost() gives the n = 0 figures.
   static StageCost cost(const Config& cfg);
 
+  // The data-dependent part of that cost for one triangle (the cycle model, docs/cycles.md):
+  // rtl/fxr_traverse.sv searches n = bits of w = x1 − x0 offset bits per row (one per clock) and
+  // spends one clock on the row's result, so a row takes n + 1 clocks, the row r span is valid
+  // (r + 1)·(n + 1) + 1 clocks after the input transfer and the next triangle is accepted in the
+  // clock that finishes the last row: the unit is occupied rows·(n + 1) clocks. An empty
+  // candidate rectangle (w < 0 or y1 < y0) is accepted and dropped in one clock.
+  struct Timing {
+    bool empty = true;
+    int rows = 0;  // candidate rows y1 − y0 + 1
+    int n = 0;     // search bits per row
+    int64_t row_clocks() const { return n + 1; }
+    int64_t occupancy() const { return empty ? 1 : (int64_t)rows * row_clocks(); }
+  };
+  static Timing timing(const In& in) {
+    Timing t;
+    const int64_t w = (int64_t)in.edges.x1 - in.edges.x0;
+    t.empty = w < 0 || in.edges.y1 < in.edges.y0;
+    if (t.empty) return t;
+    t.rows = in.edges.y1 - in.edges.y0 + 1;
+    while (t.n < 62 && (w >> t.n) != 0) ++t.n;
+    return t;
+  }
+
  private:
   Span span_;
 };

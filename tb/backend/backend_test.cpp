@@ -27,6 +27,7 @@ using fxr::SceneStageVectors;
 using Dut = Vfxr_raster_backend;
 
 using fxr::tb::Draw;
+using fxr::tb::Gen;
 using fxr::tb::Handshake;
 using fxr::tb::kPerf;
 using fxr::tb::kPerfNames;
@@ -155,102 +156,6 @@ TEST(Backend, SceneFilesMatchTheModel) {
 
 
 // ---- random triangles with the hard cases ------------------------------------------------------
-
-// Window position (pixels, y up) → clip coordinates at w (viewport transform of stage 4 inverted
-// in double; the front end's single float32 rounding applies).
-struct Gen {
-  std::mt19937_64 rng;
-  double W, H;
-  explicit Gen(uint64_t seed, int w, int h) : rng(seed), W(w), H(h) {}
-  double uni(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-  int pick(int n) { return (int)(rng() % (uint64_t)n); }
-  fxr::ClipVertex vtx(double x, double y, double w, double z_ndc) {
-    fxr::ClipVertex v;
-    v.pos[0] = (float)((x / W * 2.0 - 1.0) * w);
-    v.pos[1] = (float)((y / H * 2.0 - 1.0) * w);
-    v.pos[2] = (float)(z_ndc * w);
-    v.pos[3] = (float)w;
-    for (int k = 0; k < kRtlVaryings; ++k) v.var[k] = (float)uni(-4.0, 4.0);
-    return v;
-  }
-  fxr::ClipTriangle tri(const double p[3][2], const double w[3]) {
-    fxr::ClipTriangle t;
-    for (int i = 0; i < 3; ++i) t.v[i] = vtx(p[i][0], p[i][1], w[i], uni(-0.99, 0.99));
-    if (rng() & 1) std::swap(t.v[1], t.v[2]);  // both windings
-    return t;
-  }
-  // Appends one case (two triangles for the shared-edge ties). Kinds, with their weights:
-  void add(std::vector<fxr::ClipTriangle>& out, std::array<uint64_t, 9>& kinds) {
-    const int r = pick(1000);
-    double p[3][2], w[3] = {1, 1, 1};
-    auto around = [&](double cx, double cy, double s) {
-      for (auto& q : p) {
-        q[0] = cx + uni(-s, s);
-        q[1] = cy + uni(-s, s);
-      }
-    };
-    const double cx = uni(-4, W + 4), cy = uni(-4, H + 4);
-    int kind;
-    if (r < 450) {  // 0: general small triangles, up to ~12 pixels across
-      kind = 0;
-      around(cx, cy, uni(1.0, 6.0));
-    } else if (r < 600) {  // 1: top-left ties: a quad on pixel centres / edges split along a diagonal
-      kind = 1;
-      const double x0 = std::floor(uni(0, W - 8)) + (pick(2) ? 0.5 : 0.0), y0 = std::floor(uni(0, H - 8)) + (pick(2) ? 0.5 : 0.0);
-      const double sx = 1 + pick(6), sy = 1 + pick(6);
-      const double q[4][2] = {{x0, y0}, {x0 + sx, y0}, {x0 + sx, y0 + sy}, {x0, y0 + sy}};
-      const int d = pick(2);
-      const double a[3][2] = {{q[0][0], q[0][1]}, {q[1 + d][0], q[1 + d][1]}, {q[2 + d][0], q[2 + d][1]}};
-      const double b[3][2] = {{q[0][0], q[0][1]}, {q[2 + d][0], q[2 + d][1]}, {q[(3 + d) % 4][0], q[(3 + d) % 4][1]}};
-      out.push_back(tri(a, w));
-      out.push_back(tri(b, w));
-      ++kinds[1];
-      return;
-    } else if (r < 720) {  // 2: 1-pixel and sub-pixel triangles
-      kind = 2;
-      around(std::floor(cx) + 0.5, std::floor(cy) + 0.5, uni(0.01, 0.9));
-    } else if (r < 800) {  // 3: slivers: long and thin
-      kind = 3;
-      const double ang = uni(0, 6.283185307179586), len = uni(8, 40), th = uni(0.001, 0.3);
-      p[0][0] = cx; p[0][1] = cy;
-      p[1][0] = cx + len * std::cos(ang); p[1][1] = cy + len * std::sin(ang);
-      p[2][0] = cx + 0.5 * len * std::cos(ang) - th * std::sin(ang);
-      p[2][1] = cy + 0.5 * len * std::sin(ang) + th * std::cos(ang);
-    } else if (r < 803) {  // 4: full viewport
-      kind = 4;
-      p[0][0] = -1; p[0][1] = -1; p[1][0] = 2 * W + 2; p[1][1] = -1; p[2][0] = -1; p[2][1] = 2 * H + 2;
-    } else if (r < 810) {  // 5: guard-band-sized: vertices far outside, covering a corner
-      kind = 5;
-      const double big = uni(1e3, 3e4);
-      p[0][0] = uni(0, W); p[0][1] = uni(0, H);
-      p[1][0] = p[0][0] + uni(2, 6); p[1][1] = -big;
-      p[2][0] = p[0][0] + big; p[2][1] = p[0][1] + uni(-3, 3);
-    } else if (r < 900) {  // 6: w ratio up to 10^6 inside a triangle (perspective)
-      kind = 6;
-      around(cx, cy, uni(1.0, 8.0));
-      w[0] = uni(0.001, 0.01);
-      w[1] = w[0] * uni(1e5, 1e6);
-      w[2] = uni(0.5, 2);
-    } else {  // 7: zero area: collinear or repeated vertices
-      kind = 7;
-      around(cx, cy, uni(1.0, 6.0));
-      if (pick(2)) {  // a repeated vertex
-        p[2][0] = p[0][0];
-        p[2][1] = p[0][1];
-      } else {  // three collinear points on whole pixels (exact after snapping)
-        p[0][0] = std::round(p[0][0]);
-        p[0][1] = std::round(p[0][1]);
-        p[1][0] = p[0][0] + 1 + pick(4);
-        p[1][1] = p[0][1] + pick(4);
-        const double t = 2 + pick(2);
-        p[2][0] = p[0][0] + t * (p[1][0] - p[0][0]);
-        p[2][1] = p[0][1] + t * (p[1][1] - p[0][1]);
-      }
-    }
-    ++kinds[(size_t)kind];
-    out.push_back(tri(p, w));
-  }
-};
 
 // One draw per depth function, the cull mode, winding, write mask and depth test varying with
 // it; kCasesPerDraw random cases each (a tie case is two triangles): 8 × 12,500 cases > 10^5 triangles.
