@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "command.hpp"
+#include "model/config/arch_config.hpp"
 #include "model/config/config.hpp"
 
 namespace {
@@ -31,6 +32,7 @@ fxr::app::Runner setup(CLI::App& sub) {
     if (!o->md.empty()) {
       auto f = open(o->md);
       fxr::emit_md_tables(f, cfg);
+      fxr::emit_arch_md_table(f, fxr::ArchConfig{});  // the cycle model's knobs (docs/cycles.md)
     }
     if (o->json == "-" || (o->sv.empty() && o->md.empty() && o->json.empty())) {
       std::cout << fxr::config_to_json(cfg).dump(2) << "\n";

@@ -10,8 +10,9 @@
 // stages: a producer puts a result at the clock it is valid (blocking while the link is full:
 // its stall), a consumer takes it when it is ready for the next transaction (blocking while the
 // link is empty: starved). A pipelined stage (setup, divide) is an accept thread and an output
-// thread joined by an internal FIFO of `latency` entries (its pipeline registers): the whole
-// pipeline holds while its output is not taken, as the RTL's stall rule.
+// thread joined by an internal FIFO of `latency` − 1 entries (with the one the output thread
+// holds: its pipeline registers): the whole pipeline holds while its output is not taken, as
+// the RTL's stall rule, and a triangle setup culls still takes its place in it.
 #include "sc/cycle_model.hpp"
 
 #include <systemc.h>
@@ -62,6 +63,7 @@ struct SpanTok {
   Span sp;
   std::shared_ptr<const TriangleEquations> eq;
   bool last_of_tri = false;
+  size_t tri = 0;  // its triangle's index in the equations FIFO's order
   uint64_t t = 0;
 };
 struct HandTok {  // interp front → back: the span's samples
@@ -114,6 +116,7 @@ uint64_t now_clock() { return (uint64_t)(sc_core::sc_time_stamp().value() / kClo
 struct Shared {
   CycleRun* run = nullptr;
   bool timeline = false;
+  bool span_clocks = false;
 };
 
 class Clocked : public sc_core::sc_module {
@@ -138,7 +141,7 @@ class Clocked : public sc_core::sc_module {
   // Puts a result valid from clock `at`; while the link is full the stage stalls, and a result
   // put into a register freed in clock F is valid from F + 1.
   template <class T>
-  void put(sc_core::sc_fifo_out<T>& out, T x, uint64_t at) {
+  uint64_t put(sc_core::sc_fifo_out<T>& out, T x, uint64_t at) {
     wait_until(at);
     const uint64_t a = now_clock();
     bool blocked = false;
@@ -147,9 +150,10 @@ class Clocked : public sc_core::sc_module {
       blocked = true;
     }
     x.t = blocked ? now_clock() + 1 : now_clock();
-    clk().stalled += now_clock() - a;
+    clk().stalled += x.t - a;  // held from `at` until the result is in the register
     ++clk().out;
     out.write(x);
+    return x.t;  // the clock the result is valid from
   }
   // Busy clocks as the union of [b, e) intervals (in non-decreasing b order).
   void busy(uint64_t b, uint64_t e) {
@@ -199,7 +203,9 @@ class SetupModule : public Clocked {
   sc_core::sc_fifo_in<TriTok> in;
   sc_core::sc_fifo_out<EqTok> out;
   SetupModule(sc_core::sc_module_name n, Shared& sh, const Config& cfg, const ArchConfig& arch, const DrawState& st)
-      : Clocked(n, sh, kSetup), stage_(cfg, st, true), pipe_("pipe", std::max(1, SetupStage::cost(cfg).latency)) {
+      : Clocked(n, sh, kSetup),
+        stage_(cfg, st, true),
+        pipe_("pipe", std::max(1, SetupStage::cost(cfg).latency - 1)) {  // + the output thread's token
     const StageCost c = SetupStage::cost(cfg);
     latency_ = c.latency;
     ii_ = std::max(1, (c.ii + arch.setup_units - 1) / arch.setup_units);
@@ -220,18 +226,22 @@ class SetupModule : public Clocked {
       busy(ta, ta + (uint64_t)ii_);
       std::shared_ptr<TriangleEquations> eq;
       stage_.step(*k.tri, [&](const TriangleEquations& e) { eq = std::make_shared<TriangleEquations>(e); });
-      if (eq) {
-        PipeTok p;
-        p.eq = eq;
-        p.t = ta + (uint64_t)latency_;
-        pipe_.write(p);  // blocks while the pipeline is full (its output not taken)
-      }
+      // A culled triangle goes down the pipeline too (it holds a stage while the pipeline is
+      // stalled) and leaves at its end without an output.
+      PipeTok p;
+      p.eq = eq;
+      p.t = ta + (uint64_t)latency_;
+      pipe_.write(p);  // blocks while the pipeline is full (its output not taken)
       free_at = ta + (uint64_t)ii_;
     }
   }
   void emit() {
     for (;;) {
       const PipeTok p = pipe_.read();
+      if (!p.eq) {
+        wait_until(p.t);
+        continue;
+      }
       ++sh_.run->drawn;
       EqTok e;
       e.eq = p.eq;
@@ -244,6 +254,51 @@ class SetupModule : public Clocked {
   int latency_ = 0, ii_ = 1;
 };
 
+// The equations FIFO of fxr_raster_backend (tri_fifo_depth entries, written when traversal
+// accepts a triangle, read by the interpolators' ctx_i). Its entries retire in order, at most one
+// per clock, once traversal is past the entry and no span of it waits:
+//   R_j = max(R_{j−1} + 1, P_j + 1, L_j + 1)
+// P_j: the clock traversal is ready for the next triangle after j (fin_q takes the write index
+// then, visible a clock later), L_j: the clock the interpolators take j's last span (none: 0).
+// A span of triangle i meets its equations only as the FIFO head or the entry after it, so it
+// is taken no earlier than R_{i−2} + 1; traversal accepts triangle j only with a free entry,
+// R_{j−depth} + 1.
+class EqFifo {
+ public:
+  explicit EqFifo(int depth) : depth_(depth) {}
+  int depth() const { return depth_; }
+  // traversal accepts triangle j (returns j)
+  size_t push(bool has_spans) {
+    p_.push_back(kUnknown);
+    l_.push_back(has_spans ? kUnknown : 0);
+    return p_.size() - 1;
+  }
+  void past(size_t j, uint64_t t) { p_[j] = t, changed.notify(sc_core::SC_ZERO_TIME); }
+  void last_span(size_t j, uint64_t t) { l_[j] = t, changed.notify(sc_core::SC_ZERO_TIME); }
+  // R_j once known (kUnknown before).
+  uint64_t retire(size_t j) {
+    while (r_.size() <= j) {
+      const size_t k = r_.size();
+      if (p_.size() <= k || p_[k] == kUnknown || l_[k] == kUnknown) return kUnknown;
+      uint64_t r = std::max(p_[k] + 1, l_[k] + 1);
+      if (k > 0) r = std::max(r, r_[k - 1] + 1);
+      r_.push_back(r);
+    }
+    return r_[j];
+  }
+  static constexpr uint64_t kUnknown = ~(uint64_t)0;
+  sc_core::sc_event changed;
+  // Spans the interpolators have taken (the span link's handshake: traversal's output register
+  // is free only once its span is taken, which may be after the front has read it and waits
+  // for its equations).
+  uint64_t spans_taken = 0;
+  sc_core::sc_event taken;
+
+ private:
+  int depth_;
+  std::vector<uint64_t> p_, l_, r_;
+};
+
 // Stage 6: fxr_traverse (TraverseStage::timing). A triangle is accepted only with a free entry
 // of the equations FIFO (tri_fifo_depth), which the interpolators free at the triangle's last
 // span (traversal itself for a triangle without spans).
@@ -252,9 +307,9 @@ class TraverseModule : public Clocked {
   SC_HAS_PROCESS(TraverseModule);
   sc_core::sc_fifo_in<EqTok> in;
   sc_core::sc_fifo_out<SpanTok> out;
-  sc_core::sc_fifo<int>* eq_fifo = nullptr;
-  TraverseModule(sc_core::sc_module_name n, Shared& sh, const Config& cfg, const DrawState& st)
-      : Clocked(n, sh, kTraverse), stage_(cfg, st) {
+  EqFifo* eq_fifo = nullptr;
+  TraverseModule(sc_core::sc_module_name n, Shared& sh, const Config& cfg, const ArchConfig& arch, const DrawState& st)
+      : Clocked(n, sh, kTraverse), stage_(cfg, st), link_depth_((uint64_t)arch.link_depth) {
     SC_THREAD(main);
     set_stack_size(kStack);
   }
@@ -264,17 +319,27 @@ class TraverseModule : public Clocked {
     uint64_t free_at = 0;
     std::vector<Span> spans;
     for (;;) {
-      wait_until(free_at);
-      while (eq_fifo->num_free() == 0) wait(eq_fifo->data_read_event());
+      // A free entry of the equations FIFO: entry j − depth retired.
+      const size_t j = next_++;
+      if (j >= (size_t)eq_fifo->depth()) {
+        for (;;) {
+          const uint64_t r = eq_fifo->retire(j - (size_t)eq_fifo->depth());
+          if (r != EqFifo::kUnknown) {
+            free_at = std::max(free_at, r + 1);
+            break;
+          }
+          wait(eq_fifo->changed);
+        }
+      }
       const EqTok k = take(in, free_at);
       const uint64_t ta = now_clock();
-      eq_fifo->write(1);
       const TraverseStage::Timing tm = TraverseStage::timing(*k.eq);
       spans.clear();
       stage_.step(*k.eq, [&](const Span& s) { spans.push_back(s); });
+      eq_fifo->push(!spans.empty());
       if (tm.empty) {
-        eq_fifo->read();
         free_at = ta + 1;
+        eq_fifo->past(j, ta + 1);
         continue;
       }
       uint64_t shift = 0;  // clocks lost to a full output register
@@ -286,17 +351,36 @@ class TraverseModule : public Clocked {
         s.sp = spans[i];
         s.eq = k.eq;
         s.last_of_tri = i + 1 == spans.size();
-        put(out, s, valid);
-        if (now_clock() > valid) shift += now_clock() - valid;
+        s.tri = j;
+        // A span held in the output register stops the walk in the row's result clock: the
+        // rows after it move by as much as this span's valid clock did. The register is free
+        // once the interpolators have taken the span before (link_depth spans before).
+        uint64_t v = valid;
+        wait_until(v);
+        const uint64_t a = now_clock();
+        bool held = false;
+        while (eq_fifo->spans_taken + link_depth_ <= span_index_) {
+          wait(eq_fifo->taken);
+          held = true;
+        }
+        if (held) {
+          v = now_clock() + 1;
+          clk().stalled += v - a;
+        }
+        shift += put(out, s, v) - valid;
+        ++span_index_;
         ++sh_.run->spans;
       }
-      if (spans.empty()) eq_fifo->read();
       free_at = ta + shift + (uint64_t)tm.rows * rc;
+      eq_fifo->past(j, free_at);
       busy(ta, free_at);
       clk().busy -= shift;  // those clocks are counted as stalled (put)
     }
   }
   TraverseStage stage_;
+  size_t next_ = 0;          // the FIFO index of the next triangle
+  uint64_t span_index_ = 0;  // spans put out so far
+  uint64_t link_depth_ = 1;
 };
 
 // Stage 7: fxr_interp. The front takes a span, spends InterpStage::span_front_clocks on it and
@@ -307,7 +391,7 @@ class InterpFront : public Clocked {
   SC_HAS_PROCESS(InterpFront);
   sc_core::sc_fifo_in<SpanTok> in;
   sc_core::sc_fifo<HandTok>* hand = nullptr;
-  sc_core::sc_fifo<int>* eq_fifo = nullptr;
+  EqFifo* eq_fifo = nullptr;
   InterpFront(sc_core::sc_module_name n, Shared& sh, const Config& cfg, const ArchConfig& arch, const DrawState& st)
       : Clocked(n, sh, kInterpFront), stage_(cfg, st, true), steps_(arch.interp_div_steps) {
     SC_THREAD(main);
@@ -319,8 +403,22 @@ class InterpFront : public Clocked {
     uint64_t free_at = 0;
     for (;;) {
       const SpanTok k = take(in, free_at);
+      // Its equations are the FIFO head or the entry after it: entry tri − 2 retired.
+      if (k.tri >= 2) {
+        for (;;) {
+          const uint64_t r = eq_fifo->retire(k.tri - 2);
+          if (r != EqFifo::kUnknown) {
+            wait_until(r + 1);
+            break;
+          }
+          wait(eq_fifo->changed);
+        }
+      }
       const uint64_t ta = now_clock();
-      if (k.last_of_tri) eq_fifo->read();  // the triangle's entry is retired
+      ++eq_fifo->spans_taken;
+      if (sh_.span_clocks) sh_.run->span_taken.push_back(ta);
+      eq_fifo->taken.notify(sc_core::SC_ZERO_TIME);
+      if (k.last_of_tri) eq_fifo->last_span(k.tri, ta);
       auto samples = std::make_shared<std::vector<PlaneSample>>();
       stage_.step(*k.eq, k.sp, [&](const PlaneSample& p) { samples->push_back(p); });
       const uint64_t done = ta + (uint64_t)InterpStage::span_front_clocks(*k.eq, k.sp, steps_);
@@ -331,6 +429,7 @@ class InterpFront : public Clocked {
       h.samples = samples;
       h.t = done;
       hand->write(h);
+      wait(sc_core::SC_ZERO_TIME);  // the write becomes readable in the update phase
       while (hand->num_available() > 0) wait(hand->data_read_event());  // handed over
       clk().stalled += now_clock() - a;
       ++clk().out;
@@ -424,7 +523,8 @@ class DepthModule : public Clocked {
         e.hazard_tracked = true;
       }
       port_free_ = ta + 1;
-      queue_.write(e);  // blocks while the queue is full
+      busy(ta, ta + 1);  // the memory port's read slot
+      queue_.write(e);   // blocks while the queue is full
       free_at = now_clock() + 1;
     }
   }
@@ -446,7 +546,8 @@ class DepthModule : public Clocked {
       }
       // Occupied while the sample is in the queue or the output FIFO (the RTL's count registers:
       // from the clock after its input transfer to the clock its successor takes it).
-      busy(e.t + 1, leave + (e.pass ? 2 : 1));
+      const uint64_t ob = std::max(e.t + 1, occ_end_), oe = leave + (e.pass ? 2 : 1);
+      if (oe > ob) clk().occupied += oe - ob, occ_end_ = oe;
       if (e.hazard_tracked) {
         --in_queue_[e.pixel];
         left_at_[e.pixel] = leave;
@@ -461,7 +562,7 @@ class DepthModule : public Clocked {
   int head_clocks_;
   bool test_, hazards_, shared_port_;
   int width_;
-  uint64_t port_free_ = 0;
+  uint64_t port_free_ = 0, occ_end_ = 0;
   std::unordered_map<int64_t, int> in_queue_;
   std::unordered_map<int64_t, uint64_t> left_at_;
   sc_core::sc_event left_;
@@ -476,7 +577,7 @@ class DivideModule : public Clocked {
   DivideModule(sc_core::sc_module_name n, Shared& sh, const Config& cfg, const ArchConfig& arch, const DrawState& st)
       : Clocked(n, sh, kDivide), stage_(cfg, st, true),
         cost_(divide_cost(cfg, std::max(1, st.num_varyings), arch_divide_lanes(arch, st.num_varyings))),
-        pipe_("pipe", std::max(1, cost_.latency)) {
+        pipe_("pipe", std::max(1, cost_.latency - 1)) {  // + the output thread's = the pipeline registers
     SC_THREAD(accept);
     set_stack_size(kStack);
     SC_THREAD(emit);
@@ -531,12 +632,16 @@ SC_MODULE(Sink) {
 // A fresh SystemC kernel per run: SystemC 2.3 cannot elaborate again after sc_start, so each
 // simulation gets its own simulation context (the previous one is left, not deleted: its
 // processes' stacks may still be referenced by the kernel's globals).
-void fresh_kernel() {
+}  // namespace
+
+void fresh_sc_kernel() {
   static bool quiet = (setenv("SYSC_DISABLE_COPYRIGHT_MESSAGE", "1", 0), true);
   (void)quiet;
   sc_core::sc_curr_simcontext = new sc_core::sc_simcontext;
   sc_core::sc_default_global_context = sc_core::sc_curr_simcontext;
 }
+
+namespace {
 
 // The back end (stages 5–9) behind `src_out` (setup's input link); builds and runs.
 struct Backend {
@@ -547,7 +652,7 @@ struct Backend {
   sc_core::sc_fifo<HandTok> l_hand;
   sc_core::sc_fifo<SampleTok> l_sample, l_pass;
   sc_core::sc_fifo<FragTok> l_out;
-  sc_core::sc_fifo<int> eq_fifo;
+  EqFifo eq_fifo;
   SetupModule setup;
   TraverseModule traverse;
   InterpFront front;
@@ -556,9 +661,9 @@ struct Backend {
   DivideModule divide;
   Sink sink;
 
-  Backend(CycleRun& run, bool timeline, const Config& cfg, const ArchConfig& arch, const DrawState& st, FrameOutput& f,
+  Backend(CycleRun& run, const CycleOptions& opt, const Config& cfg, const ArchConfig& arch, const DrawState& st, FrameOutput& f,
           FragmentSink* out)
-      : sh{&run, timeline},
+      : sh{&run, opt.timeline, opt.span_clocks},
         l_in("l_in", arch.link_depth),
         l_eq("l_eq", arch.link_depth),
         l_span("l_span", arch.link_depth),
@@ -566,9 +671,9 @@ struct Backend {
         l_sample("l_sample", arch.link_depth),
         l_pass("l_pass", std::max(2, arch.link_depth)),  // fxr_depth's 2-entry output FIFO
         l_out("l_out", arch.link_depth),
-        eq_fifo("eq_fifo", arch.tri_fifo_depth),
+        eq_fifo(arch.tri_fifo_depth),
         setup("setup", sh, cfg, arch, st),
-        traverse("traverse", sh, cfg, st),
+        traverse("traverse", sh, cfg, arch, st),
         front("interp_front", sh, cfg, arch, st),
         back("interp_back", sh),
         depth("depth", sh, cfg, arch, st, f),
@@ -598,7 +703,9 @@ void finish(CycleRun& run, std::chrono::steady_clock::time_point t0) {
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   run.sim_events = sc_core::sc_delta_count();
   run.clocks = run.last_out >= run.first_in && run.stage[kDivide].out > 0 ? run.last_out - run.first_in + 1 : 0;
-  for (StageClocks& c : run.stage) {
+  for (int s = 0; s < kNumStages; ++s) {
+    StageClocks& c = run.stage[(size_t)s];
+    if (s != kDepth) c.occupied = c.busy + c.stalled;
     const uint64_t used = c.busy + c.stalled;
     c.starved = run.clocks > used ? run.clocks - used : 0;
   }
@@ -618,7 +725,7 @@ class GeometryModule : public Clocked {
         prims_(prims),
         latency_(ConvertStage::cost(cfg).latency + ClipStage::cost(cfg).latency + RecipStage::cost(cfg).latency +
                  ViewportStage::cost(cfg).latency),
-        pipe_("pipe", std::max(1, latency_)) {
+        pipe_("pipe", std::max(1, latency_ - 1)) {
     SC_THREAD(accept);
     set_stack_size(kStack);
     SC_THREAD(emit);
@@ -676,11 +783,11 @@ CycleRun run_backend_cycles(const Config& cfg, const ArchConfig& arch, const Dra
                             const CycleOptions& opt) {
   validate_arch(arch, "arch");
   CycleRun run;
-  fresh_kernel();
+  fresh_sc_kernel();
   const auto t0 = std::chrono::steady_clock::now();
   // The modules stay allocated with their (abandoned) kernel: their threads are still blocked
   // on links, and a module must not be destroyed under a live process.
-  Backend& b = *new Backend(run, opt.timeline, cfg, arch, st, f, sink);
+  Backend& b = *new Backend(run, opt, cfg, arch, st, f, sink);
   Source& src = *new Source("source");
   src.tris = &tris;
   src.run = &run;
@@ -696,9 +803,9 @@ CycleRun run_unit_cycles(const Config& cfg, const ArchConfig& arch, const DrawSt
   validate_arch(arch, "arch");
   frame_begin(cfg, st, f);
   CycleRun run;
-  fresh_kernel();
+  fresh_sc_kernel();
   const auto t0 = std::chrono::steady_clock::now();
-  Backend& b = *new Backend(run, opt.timeline, cfg, arch, st, f, sink);  // kept: as above
+  Backend& b = *new Backend(run, opt, cfg, arch, st, f, sink);  // kept: as above
   GeometryModule& geo = *new GeometryModule("geometry", b.sh, cfg, st, prims);
   geo.out(b.l_in);
   sc_core::sc_start();

@@ -30,16 +30,20 @@ enum Stage : int { kGeometry, kSetup, kTraverse, kInterpFront, kInterpBack, kDep
 const char* stage_name(int s);
 
 // Clocks of one stage over the frame [first input, last output]:
-//   busy     the stage works on a transaction (its own clocks, from cost() / timing())
+//   busy     the stage works on a transaction (its own clocks, from cost() / timing(); the
+//            depth stage: one clock per sample on its memory port)
 //   stalled  it holds a finished result its successor does not take (blocked on the link)
 //   starved  neither: waiting for input (window − busy − stalled)
+//   occupied clocks with a transaction inside the stage (what the RTL's state registers show:
+//            busy + stalled, and for the depth stage every clock a sample is in its queue)
 struct StageClocks {
   uint64_t in = 0, out = 0;  // transactions accepted / emitted
-  uint64_t busy = 0, stalled = 0, starved = 0;
+  uint64_t busy = 0, stalled = 0, starved = 0, occupied = 0;
 };
 
 struct CycleOptions {
-  bool timeline = false;  // keep every stage's busy intervals (for the occupancy plot)
+  bool timeline = false;     // keep every stage's busy intervals (for the occupancy plot)
+  bool span_clocks = false;  // keep the clock every span is taken by the interpolators
 };
 
 struct CycleRun {
@@ -53,6 +57,7 @@ struct CycleRun {
   double seconds = 0;                   // wall clock of the simulation
   std::array<StageClocks, kNumStages> stage{};
   std::array<std::vector<std::pair<uint64_t, uint64_t>>, kNumStages> busy;  // [begin, end) when timeline
+  std::vector<uint64_t> span_taken;  // when span_clocks: the clock each span entered the interpolators
 
   // The stage with the most busy clocks (the one every other waits for).
   int bottleneck() const;
@@ -71,6 +76,12 @@ CycleRun run_backend_cycles(const Config& cfg, const ArchConfig& arch, const Dra
 CycleRun run_unit_cycles(const Config& cfg, const ArchConfig& arch, const DrawState& st,
                          const std::vector<ClipTriangle>& prims, FrameOutput& f, FragmentSink* sink,
                          const CycleOptions& opt = {});
+
+// A fresh SystemC simulation context: SystemC 2.3 cannot elaborate again after sc_start, so every
+// simulation in a process (each run above, the mixed simulation of tb/backend/mixed_test.cpp)
+// starts with one. Modules of an earlier simulation must stay allocated (never destroyed under
+// their processes).
+void fresh_sc_kernel();
 
 // The setup inputs of a draw as the model's chain produces them (stages 1–4 of every primitive).
 std::vector<SetupTriangle> setup_inputs(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& prims);

@@ -1,0 +1,257 @@
+// `fxraster cycles SCENE|--default [--config F] --out DIR`: the cycle-approximate SystemC model
+// (sc/cycle_model.hpp, docs/cycles.md) on a scene: clocks per frame, triangles and fragments per
+// clock, per-stage busy / stalled / starved clocks, the bottleneck stage, a timeline of stage
+// occupancy (timeline.csv; timeline.png by scripts/plot_cycles.py) and a small sweep over the
+// architecture knobs (ArchConfig, the unit "arch" of a configuration file).
+//
+// Writes DIR/cycles.json, DIR/report.md, DIR/timeline.csv, DIR/sweep.csv and DIR/timeline.png.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "command.hpp"
+#include "frontend/scene.hpp"
+#include "model/config/arch_config.hpp"
+#include "model/config/json_input.hpp"
+#include "sc/cycle_model.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using fxr::cyc::CycleRun;
+
+struct Opts {
+  std::string scene, config, out;
+  bool use_default = false, no_sweep = false, no_plot = false, quiet = false, no_bunny = false;
+  int width = 0, height = 0;
+  int bins = 200;
+};
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// The scene's configuration with the fields of F (the model's number formats, unit by unit,
+// as `render --config`), and the knobs of F's unit "arch".
+fxr::ArchConfig apply_config(fxr::Scene& sc, const std::string& path) {
+  nlohmann::json j = fxr::read_json_file(path, "configuration file");
+  fxr::ArchConfig arch;
+  if (j.is_object() && j.contains("arch")) {
+    arch = fxr::arch_from_json(j.at("arch"), path);
+    j.erase("arch");
+  }
+  fxr::config_fields_from_json(j, path);
+  nlohmann::json merged = fxr::config_to_json(sc.config);
+  merged.merge_patch(j);
+  sc.config = fxr::config_from_json(merged, path);
+  return arch;
+}
+
+double per(uint64_t a, uint64_t b) { return b ? (double)a / (double)b : 0.0; }
+
+nlohmann::json run_json(const CycleRun& r) {
+  nlohmann::json j;
+  j["clocks"] = r.clocks;
+  j["primitives"] = r.primitives;
+  j["triangles"] = r.triangles;
+  j["triangles_drawn"] = r.drawn;
+  j["spans"] = r.spans;
+  j["fragments_generated"] = r.samples;
+  j["fragments_passed"] = r.passed;
+  j["triangles_per_clock"] = per(r.triangles, r.clocks);
+  j["fragments_per_clock"] = per(r.samples, r.clocks);
+  j["bottleneck"] = fxr::cyc::stage_name(r.bottleneck());
+  j["sim_seconds"] = r.seconds;
+  nlohmann::json st = nlohmann::json::object();
+  for (int s = 0; s < fxr::cyc::kNumStages; ++s) {
+    const fxr::cyc::StageClocks& c = r.stage[(size_t)s];
+    st[fxr::cyc::stage_name(s)] = {{"in", c.in}, {"out", c.out}, {"busy", c.busy}, {"stalled", c.stalled}, {"starved", c.starved}};
+  }
+  j["stages"] = st;
+  return j;
+}
+
+// Occupancy per bin of the frame: the fraction of the bin's clocks each stage was busy.
+void write_timeline(const CycleRun& r, int bins, const std::string& path) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot write");
+  const uint64_t t0 = r.first_in, len = std::max<uint64_t>(1, r.clocks);
+  const uint64_t w = std::max<uint64_t>(1, (len + (uint64_t)bins - 1) / (uint64_t)bins);
+  const size_t nb = (size_t)((len + w - 1) / w);
+  std::vector<std::vector<uint64_t>> busy(fxr::cyc::kNumStages, std::vector<uint64_t>(nb, 0));
+  for (int s = 0; s < fxr::cyc::kNumStages; ++s)
+    for (const auto& iv : r.busy[(size_t)s]) {
+      uint64_t b = std::max(iv.first, t0) - t0, e = std::min(iv.second, t0 + len) - t0;
+      while (b < e) {
+        const size_t k = (size_t)(b / w);
+        const uint64_t end = std::min(e, (uint64_t)(k + 1) * w);
+        busy[(size_t)s][k] += end - b;
+        b = end;
+      }
+    }
+  f << "clock";
+  for (int s = 0; s < fxr::cyc::kNumStages; ++s) f << "," << fxr::cyc::stage_name(s);
+  f << "\n";
+  for (size_t k = 0; k < nb; ++k) {
+    f << k * w;
+    for (int s = 0; s < fxr::cyc::kNumStages; ++s) f << "," << std::setprecision(4) << per(busy[(size_t)s][k], w);
+    f << "\n";
+  }
+}
+
+struct Variant {
+  std::string label;
+  fxr::ArchConfig arch;
+};
+
+std::vector<Variant> sweep_variants(const fxr::ArchConfig& base) {
+  std::vector<Variant> v;
+  auto add = [&](const std::string& label, auto&& edit) {
+    fxr::ArchConfig a = base;
+    edit(a);
+    v.push_back({label, a});
+  };
+  add("baseline", [](fxr::ArchConfig&) {});
+  add("interp_div_steps 8", [](fxr::ArchConfig& a) { a.interp_div_steps = 8; });
+  add("interp_div_steps 16", [](fxr::ArchConfig& a) { a.interp_div_steps = 16; });
+  add("interp_div_steps 2", [](fxr::ArchConfig& a) { a.interp_div_steps = 2; });
+  add("tri_fifo_depth 16", [](fxr::ArchConfig& a) { a.tri_fifo_depth = 16; });
+  add("link_depth 4", [](fxr::ArchConfig& a) { a.link_depth = 4; });
+  add("divide_lanes 1", [](fxr::ArchConfig& a) { a.divide_lanes = 1; });
+  add("setup_units 2", [](fxr::ArchConfig& a) { a.setup_units = 2; });
+  add("mem_latency 8", [](fxr::ArchConfig& a) { a.mem_latency = 8; });
+  add("mem_latency 8, depth_queue_depth 16", [](fxr::ArchConfig& a) {
+    a.mem_latency = 8;
+    a.depth_queue_depth = 16;
+  });
+  add("depth_write_port 0", [](fxr::ArchConfig& a) { a.depth_write_port = 0; });
+  return v;
+}
+
+int run(const Opts& o) {
+  if (o.use_default == !o.scene.empty())
+    throw fxr::ConfigError("cycles: give exactly one of SCENE and --default");
+  if (o.bins < 1 || o.bins > 100000) throw fxr::ConfigError("cycles: --bins: " + std::to_string(o.bins) + " is not in 1 … 100000");
+  fxr::SceneOptions so;
+  so.width = o.width;
+  so.height = o.height;
+  so.no_optional = o.no_bunny;
+  fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.scene, so);
+  fxr::ArchConfig arch;
+  if (!o.config.empty()) arch = apply_config(sc, o.config);
+  fs::create_directories(o.out);
+
+  fxr::cyc::CycleOptions opt;
+  opt.timeline = true;
+  fxr::FrameOutput f;
+  const CycleRun r = fxr::cyc::run_unit_cycles(sc.config, arch, sc.state, sc.tris, f, nullptr, opt);
+  write_timeline(r, o.bins, o.out + "/timeline.csv");
+
+  std::vector<std::pair<Variant, CycleRun>> sweep;
+  if (!o.no_sweep)
+    for (const Variant& v : sweep_variants(arch)) {
+      fxr::FrameOutput g;
+      sweep.emplace_back(v, v.label == "baseline" ? r : fxr::cyc::run_unit_cycles(sc.config, v.arch, sc.state, sc.tris, g, nullptr));
+    }
+
+  nlohmann::json j;
+  j["scene"] = sc.source;
+  j["arch"] = fxr::arch_to_json(arch);
+  j["run"] = run_json(r);
+  nlohmann::json sj = nlohmann::json::array();
+  for (const auto& [v, s] : sweep)
+    sj.push_back({{"variant", v.label}, {"arch", fxr::arch_to_json(v.arch)}, {"clocks", s.clocks},
+                  {"speedup", per(r.clocks, s.clocks)}, {"bottleneck", fxr::cyc::stage_name(s.bottleneck())}});
+  j["sweep"] = sj;
+  {
+    std::ofstream jf(o.out + "/cycles.json");
+    jf << j.dump(2) << "\n";
+    std::ofstream cf(o.out + "/sweep.csv");
+    cf << "variant,clocks,speedup,bottleneck\n";
+    for (const auto& [v, s] : sweep)
+      cf << "\"" << v.label << "\"," << s.clocks << "," << per(r.clocks, s.clocks) << "," << fxr::cyc::stage_name(s.bottleneck()) << "\n";
+  }
+
+  // The plot.
+  std::string plot_note;
+  if (!o.no_plot) {
+    const std::string script = std::string(FXR_SOURCE_DIR) + "/scripts/plot_cycles.py";
+    const std::string cmd = quote(FXR_PYTHON) + " " + quote(script) + " --csv " + quote(o.out + "/timeline.csv") +
+                            " --out " + quote(o.out + "/timeline.png") + " --title " + quote("stage occupancy: " + sc.source);
+    const int st = std::system(cmd.c_str());
+    const int rc = st == -1 ? -1 : WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    if (rc == 3) plot_note = "timeline.png skipped: matplotlib is not installed for " + std::string(FXR_PYTHON);
+    else if (rc != 0) throw std::runtime_error("plot_cycles.py failed (exit " + std::to_string(rc) + "): " + cmd);
+  }
+
+  std::ostringstream md;
+  md << "# Cycles: " << sc.source << "\n\n"
+     << "The cycle-approximate SystemC model (docs/cycles.md) of the raster unit on this scene: stages 1–4 as one "
+        "geometry module, then setup, traversal, the interpolators (front: span start; back: one sample per clock), "
+        "depth and divide, one triangle offered per clock. Clocks from the first primitive in to the last fragment "
+        "out.\n\n"
+     << "| | value |\n|---|---|\n"
+     << "| primitives | " << r.primitives << " |\n| setup triangles (drawn) | " << r.triangles << " (" << r.drawn << ") |\n"
+     << "| spans | " << r.spans << " |\n| fragments generated / passed | " << r.samples << " / " << r.passed << " |\n"
+     << "| **clocks** | **" << r.clocks << "** |\n"
+     << std::fixed << std::setprecision(4) << "| triangles per clock | " << per(r.triangles, r.clocks) << " |\n"
+     << "| fragments per clock (generated) | " << per(r.samples, r.clocks) << " |\n"
+     << "| bottleneck (most busy clocks) | **" << fxr::cyc::stage_name(r.bottleneck()) << "** |\n"
+     << std::setprecision(3) << "| simulation wall clock | " << r.seconds << " s |\n\n"
+     << "## Stages\n\nbusy: working on a transaction; stalled: holding a result the next stage does not take; "
+        "starved: waiting for input (the rest of the frame).\n\n"
+     << "| stage | in | out | busy | stalled | starved | busy % |\n|---|---|---|---|---|---|---|\n";
+  for (int s = 0; s < fxr::cyc::kNumStages; ++s) {
+    const fxr::cyc::StageClocks& c = r.stage[(size_t)s];
+    md << "| " << fxr::cyc::stage_name(s) << " | " << c.in << " | " << c.out << " | " << c.busy << " | " << c.stalled
+       << " | " << c.starved << " | " << std::setprecision(1) << 100.0 * per(c.busy, r.clocks) << " |\n";
+  }
+  md << "\n## Timeline\n\n";
+  if (plot_note.empty() && !o.no_plot) md << "![stage occupancy](timeline.png)\n\n";
+  else if (!plot_note.empty()) md << "**" << plot_note << "**\n\n";
+  md << "Busy fraction of every stage per bin of the frame: `timeline.csv`.\n\n";
+  if (!sweep.empty()) {
+    md << "## Architecture sweep\n\nOne knob of the configuration's `arch` unit moved at a time (the rest as run above).\n\n"
+       << "| variant | clocks | speed-up | bottleneck |\n|---|---|---|---|\n";
+    for (const auto& [v, s] : sweep)
+      md << "| " << v.label << " | " << s.clocks << " | " << std::setprecision(3) << per(r.clocks, s.clocks) << " | "
+         << fxr::cyc::stage_name(s.bottleneck()) << " |\n";
+    md << "\n";
+  }
+  md << "Knobs of this run: `" << fxr::arch_to_json(arch).dump() << "`.\n";
+  std::ofstream(o.out + "/report.md") << md.str();
+  if (!o.quiet)
+    std::cout << "cycles " << sc.source << ": " << r.clocks << " clocks, " << std::setprecision(4)
+              << per(r.samples, r.clocks) << " fragments/clock, " << per(r.triangles, r.clocks)
+              << " triangles/clock, bottleneck " << fxr::cyc::stage_name(r.bottleneck()) << "; report " << o.out
+              << "/report.md\n";
+  return 0;
+}
+
+fxr::app::Runner setup(CLI::App& sub) {
+  auto o = std::make_shared<Opts>();
+  sub.add_option("scene", o->scene, "scene JSON file (docs/scene-format.md)");
+  sub.add_flag("--default", o->use_default, "the embedded default scene");
+  sub.add_option("--config", o->config,
+                 "configuration JSON: fields override the scene's; its unit \"arch\" sets the knobs (docs/cycles.md)");
+  sub.add_option("--out", o->out, "output directory")->required();
+  sub.add_option("--width", o->width, "override the viewport width");
+  sub.add_option("--height", o->height, "override the viewport height");
+  sub.add_flag("--no-bunny", o->no_bunny, "skip the scene's optional objects");
+  sub.add_option("--bins", o->bins, "timeline bins (default 200)");
+  sub.add_flag("--no-sweep", o->no_sweep, "skip the architecture sweep");
+  sub.add_flag("--no-plot", o->no_plot, "do not call scripts/plot_cycles.py");
+  sub.add_flag("--quiet", o->quiet, "no summary line");
+  return [o]() { return run(*o); };
+}
+
+fxr::app::Registrar reg("cycles", "clocks per frame, stage occupancy and bottleneck from the cycle-approximate SystemC model",
+                        setup);
+
+}  // namespace
