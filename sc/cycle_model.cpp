@@ -150,7 +150,11 @@ class Clocked : public sc_core::sc_module {
       blocked = true;
     }
     x.t = blocked ? now_clock() + 1 : now_clock();
-    clk().stalled += x.t - a;  // held from `at` until the result is in the register
+    // Held from `at` until the result is in the register; the clocks counted once when a
+    // pipeline's results queue up behind one held result.
+    const uint64_t from = std::max(a, stall_end_);
+    if (x.t > from) clk().stalled += x.t - from;
+    stall_end_ = std::max(stall_end_, x.t);
     ++clk().out;
     out.write(x);
     return x.t;  // the clock the result is valid from
@@ -170,7 +174,7 @@ class Clocked : public sc_core::sc_module {
 
   Shared& sh_;
   int stage_;
-  uint64_t busy_end_ = 0;
+  uint64_t busy_end_ = 0, stall_end_ = 0;
 };
 
 // ---- stage modules -----------------------------------------------------------------------------
