@@ -81,10 +81,6 @@ struct DepthEntry {  // a sample in fxr_depth's queue
   uint64_t head = 0;  // earliest clock it can leave (its read answered, compared at the head)
   uint64_t t = 0;
 };
-struct FragTok {
-  Fragment f;
-  uint64_t t = 0;
-};
 struct PipeTok {  // in a pipelined stage: an output and the clock it reaches the pipeline's end
   const SetupTriangle* tri = nullptr;
   std::shared_ptr<const TriangleEquations> eq;
@@ -101,7 +97,6 @@ std::ostream& operator<<(std::ostream& os, const SpanTok& x) { return print_tok(
 std::ostream& operator<<(std::ostream& os, const HandTok& x) { return print_tok(os, x); }
 std::ostream& operator<<(std::ostream& os, const SampleTok& x) { return print_tok(os, x); }
 std::ostream& operator<<(std::ostream& os, const DepthEntry& x) { return print_tok(os, x); }
-std::ostream& operator<<(std::ostream& os, const FragTok& x) { return print_tok(os, x); }
 std::ostream& operator<<(std::ostream& os, const PipeTok& x) { return print_tok(os, x); }
 
 // ---- clocks ------------------------------------------------------------------------------------
@@ -572,19 +567,18 @@ class DepthModule : public Clocked {
   sc_core::sc_event left_;
 };
 
-// Stage 9: fxr_divide, pipelined (divide_cost: latency, ii = groups of lanes).
+// Stage 9: fxr_divide, pipelined (divide_cost: latency, ii = groups of lanes). Its output is the
+// unit's, taken every clock (the testbench's out_ready_i = 1), so it is not a link: a fragment
+// leaves `latency` clocks after its input transfer and goes to the sink in order.
 class DivideModule : public Clocked {
  public:
   SC_HAS_PROCESS(DivideModule);
   sc_core::sc_fifo_in<SampleTok> in;
-  sc_core::sc_fifo_out<FragTok> out;
+  FragmentSink* sink = nullptr;
   DivideModule(sc_core::sc_module_name n, Shared& sh, const Config& cfg, const ArchConfig& arch, const DrawState& st)
       : Clocked(n, sh, kDivide), stage_(cfg, st, true),
-        cost_(divide_cost(cfg, std::max(1, st.num_varyings), arch_divide_lanes(arch, st.num_varyings))),
-        pipe_("pipe", std::max(1, cost_.latency - 1)) {  // + the output thread's = the pipeline registers
+        cost_(divide_cost(cfg, std::max(1, st.num_varyings), arch_divide_lanes(arch, st.num_varyings))) {
     SC_THREAD(accept);
-    set_stack_size(kStack);
-    SC_THREAD(emit);
     set_stack_size(kStack);
   }
 
@@ -594,43 +588,17 @@ class DivideModule : public Clocked {
     for (;;) {
       const SampleTok k = take(in, free_at);
       const uint64_t ta = now_clock();
-      PipeTok p;
-      stage_.step(k.ps, [&](const Fragment& f) { p.f = f; });
-      p.t = ta + (uint64_t)cost_.latency;
+      stage_.step(k.ps, [&](const Fragment& f) {
+        if (sink) sink->emit(f);
+      });
       busy(ta, ta + (uint64_t)cost_.ii);
-      pipe_.write(p);
+      ++clk().out;
+      sh_.run->last_out = ta + (uint64_t)cost_.latency;
       free_at = ta + (uint64_t)cost_.ii;
-    }
-  }
-  void emit() {
-    for (;;) {
-      const PipeTok p = pipe_.read();
-      FragTok f;
-      f.f = p.f;
-      put(out, f, p.t);
     }
   }
   DivideStage stage_;
   StageCost cost_;
-  sc_core::sc_fifo<PipeTok> pipe_;
-};
-
-// Testbench sink: always ready; records the last output clock and passes fragments on.
-SC_MODULE(Sink) {
-  sc_core::sc_fifo_in<FragTok> in;
-  FragmentSink* sink = nullptr;
-  CycleRun* run = nullptr;
-  SC_CTOR(Sink) {
-    SC_THREAD(main);
-    set_stack_size(kStack);
-  }
-  void main() {
-    for (;;) {
-      const FragTok f = in->read();
-      run->last_out = now_clock();
-      if (sink) sink->emit(f.f);
-    }
-  }
 };
 
 // A fresh SystemC kernel per run: SystemC 2.3 cannot elaborate again after sc_start, so each
@@ -655,7 +623,6 @@ struct Backend {
   sc_core::sc_fifo<SpanTok> l_span;
   sc_core::sc_fifo<HandTok> l_hand;
   sc_core::sc_fifo<SampleTok> l_sample, l_pass;
-  sc_core::sc_fifo<FragTok> l_out;
   EqFifo eq_fifo;
   SetupModule setup;
   TraverseModule traverse;
@@ -663,7 +630,6 @@ struct Backend {
   InterpBack back;
   DepthModule depth;
   DivideModule divide;
-  Sink sink;
 
   Backend(CycleRun& run, const CycleOptions& opt, const Config& cfg, const ArchConfig& arch, const DrawState& st, FrameOutput& f,
           FragmentSink* out)
@@ -674,15 +640,13 @@ struct Backend {
         l_hand("l_hand", 1),
         l_sample("l_sample", arch.link_depth),
         l_pass("l_pass", std::max(2, arch.link_depth)),  // fxr_depth's 2-entry output FIFO
-        l_out("l_out", arch.link_depth),
         eq_fifo(arch.tri_fifo_depth),
         setup("setup", sh, cfg, arch, st),
         traverse("traverse", sh, cfg, arch, st),
         front("interp_front", sh, cfg, arch, st),
         back("interp_back", sh),
         depth("depth", sh, cfg, arch, st, f),
-        divide("divide", sh, cfg, arch, st),
-        sink("sink") {
+        divide("divide", sh, cfg, arch, st) {
     setup.in(l_in);
     setup.out(l_eq);
     traverse.in(l_eq);
@@ -696,10 +660,7 @@ struct Backend {
     depth.in(l_sample);
     depth.out(l_pass);
     divide.in(l_pass);
-    divide.out(l_out);
-    sink.in(l_out);
-    sink.sink = out;
-    sink.run = &run;
+    divide.sink = out;
   }
 };
 
