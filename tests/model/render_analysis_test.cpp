@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "analysis/error_stats.hpp"
@@ -147,7 +149,7 @@ TEST(TexelErrors, TheUnitIsExactOnItsOwnCoordinatesAndWithinTheCoordinateErrorOf
 TEST(RenderReport, WritesEveryFileAndTheDumpHasOneLinePerFragment) {
   const fxr::Scene sc = small_default_scene();
   fxr::RenderOptions o;
-  o.out = (std::filesystem::temp_directory_path() / "fxr_render_report_test").string();
+  o.out = (std::filesystem::temp_directory_path() / ("fxr_render_report_test_" + std::to_string(::getpid()))).string();
   std::filesystem::remove_all(o.out);
   o.spot_checks = 100;
   const fxr::RenderSummary r = fxr::render_with_report(sc, o);
@@ -160,6 +162,7 @@ TEST(RenderReport, WritesEveryFileAndTheDumpHasOneLinePerFragment) {
   for (std::string line; std::getline(csv, line);) (line.rfind("#", 0) == 0 ? comments : rows) += 1;
   EXPECT_GT(comments, 0u);
   EXPECT_EQ(rows, r.fragments + 1);  // + the header row
+  std::filesystem::remove_all(o.out);
 }
 
 }  // namespace
