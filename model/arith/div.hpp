@@ -122,6 +122,29 @@ DivSig div_sig_radix2_steps(const DivConfig& c, uint64_t n, uint64_t d);
 // Step-by-step reciprocal-multiply with remainder correction, as the RTL computes it.
 DivSig div_sig_recip_mul(const DivConfig& c, uint64_t n, uint64_t d);
 
+// ---- 64-bit fast path of div_sig_exact (docs/speed.md "Divider") ----------------------------
+// div_sig_exact in one inline 64-bit division: no u128, no call, no operand check. Applies
+// when div_fast64_ok(c): radix2 (div_sig is div_sig_exact) and W + qb ≤ 63 (W = div_align_bits),
+// so the dividend a'·2^(qb−1) < 2^(W+1+qb−1) fits uint64_t exactly (defaults: 32 + 24 = 56).
+// Contract: for operands inside div_sig's contract (and the d == 0 / n == 0 specials) returns
+//   exactly div_sig_exact(c, n, d) (tests/model/div_test.cpp DivFast64.*: exhaustive 12-bit
+//   shapes, 10^7 random plus ties here, 10^8 in tests/model/div_slow_test.cpp). Operands
+//   outside the contract are NOT checked (div_sig_exact throws; the stage never produces them:
+//   normalize() sets the msb).
+inline bool div_fast64_ok(const DivConfig& c) {
+  return c.algorithm == DivAlgorithm::Radix2 && div_align_bits(c) + c.quot_bits <= 63;
+}
+inline DivSig div_sig_fast64(const DivConfig& c, uint64_t n, uint64_t d) {
+  if (d == 0) return {(uint64_t{1} << c.quot_bits) - 1, 0};  // saturated (div_sig contract)
+  if (n == 0) return {0, 0};
+  const int w = div_align_bits(c);
+  const uint64_t a = n << (w - c.num_bits), b = d << (w - c.den_bits);
+  const int k = a < b ? 1 : 0;
+  const uint64_t num = (a << k) << (c.quot_bits - 1);  // exact: < 2^(W+qb) ≤ 2^63
+  const uint64_t q = num / b, r = num % b;             // one hardware division
+  return round_increment(q, rne_round_up<uint64_t>(q, r, b), c.quot_bits, -k);
+}
+
 // shared_recip, the per-pixel half: Y, the reciprocal core's approximation of 1/bn at
 //   nr_frac_bits fraction bits (y = Y·2^−F), bn = b·2^−(W−1) ∈ [1, 2) the aligned divisor
 //   b = d·2^(W−db). d must be a den_bits significand with its msb set (else invalid_argument).

@@ -45,7 +45,9 @@ inline FxFloat divide_varying(const DivConfig& dc, i128 N, int en, const DenNorm
   out.neg = N < 0;
   const u128 mag = N < 0 ? (u128)0 - (u128)N : (u128)N;
   const Normalized nn = normalize(mag, dc.num_bits, Round::HalfEven);
+  // div_sig_fast64 is div_sig for radix2 at W + qb ≤ 63 (the defaults), inline (docs/speed.md).
   const DivSig q = dc.algorithm == DivAlgorithm::SharedRecip ? div_mul_round(dc, nn.sig, dn.d, dn.y)
+                   : div_fast64_ok(dc)                       ? div_sig_fast64(dc, nn.sig, dn.d)
                                                              : div_sig(dc, nn.sig, dn.d);
   // value = sig·2^−(qb−1)·2^exp_adj · 2^(msb N + en) / 2^(msb D + ed)
   out.sig = q.sig;

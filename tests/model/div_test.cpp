@@ -5,6 +5,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "model/config/config.hpp"
 #include "analysis/measure.hpp"
@@ -344,4 +345,80 @@ TEST(DivConfig, SweepConfigurationsAreValidAndMeasurable) {
     const ErrorStats s = measure(c, MeasureOptions{false, 2000, 4});
     EXPECT_LT(s.max_err_ulp, 1e6) << div_label(c);
   }
+}
+
+// ---- the inline 64-bit fast path (div_sig_fast64) against div_sig_exact and the reference ----
+
+namespace {
+
+// Shapes at the fast path's limit W + qb = 63 (W = div_align_bits), where the dividend uses
+// every bit of uint64_t but the sign bit.
+std::vector<DivConfig> fast64_edge_shapes() {
+  return {shape(DivAlgorithm::Radix2, 39, 39, 24), shape(DivAlgorithm::Radix2, 32, 32, 31),
+          shape(DivAlgorithm::Radix2, 20, 39, 24)};
+}
+
+}  // namespace
+
+TEST(DivFast64, AppliesExactlyWhereTheDividendFits64Bits) {
+  EXPECT_TRUE(div_fast64_ok(DivConfig{}));  // the default: 32 + 24 = 56
+  for (const DivConfig& c : fast64_edge_shapes()) EXPECT_TRUE(div_fast64_ok(c)) << div_label(c);
+  EXPECT_FALSE(div_fast64_ok(shape(DivAlgorithm::Radix2, 40, 40, 24)));  // 64: falls back
+  EXPECT_FALSE(div_fast64_ok(shape(DivAlgorithm::Radix2, 60, 60, 60)));
+  EXPECT_FALSE(div_fast64_ok(recip_mul_default()));  // other algorithms keep their own model
+  DivConfig sr;
+  sr.algorithm = DivAlgorithm::SharedRecip;
+  EXPECT_FALSE(div_fast64_ok(sr));
+}
+
+TEST(DivFast64, BitIdenticalToExactForAll12BitOperands) {
+  for (const DivConfig& c : {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14),
+                             shape(DivAlgorithm::Radix2, 9, 12, 10), shape(DivAlgorithm::Radix2, 11, 11, 4)}) {
+    ASSERT_TRUE(div_fast64_ok(c));
+    const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
+    for (uint64_t n = nlo; n < 2 * nlo; ++n)
+      for (uint64_t d = dlo; d < 2 * dlo; ++d) {
+        const DivSig f = div_sig_fast64(c, n, d);
+        ASSERT_EQ(f, div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+        ASSERT_EQ(f, ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+      }
+  }
+}
+
+TEST(DivFast64, BitIdenticalOnTenMillionPlusTiesAtDefaultAndEdgeWidths) {
+  std::vector<DivConfig> cs = {DivConfig{}};
+  for (const DivConfig& c : fast64_edge_shapes())
+    if (c.num_bits == c.den_bits) cs.push_back(c);
+  for (const DivConfig& c : cs) {
+    uint64_t mismatches = 0;
+    random_and_ties(c, c.num_bits == 32 && c.quot_bits == 24 ? 10'000'000 : 1'000'000, 21,
+                    [&](uint64_t n, uint64_t d) {
+                      if (div_sig_fast64(c, n, d) != div_sig_exact(c, n, d) && ++mismatches <= 5)
+                        ADD_FAILURE() << div_label(c) << " n=" << n << " d=" << d;
+                    });
+    EXPECT_EQ(mismatches, 0u) << div_label(c);
+  }
+}
+
+TEST(DivFast64, DirectedHardCases) {
+  std::vector<DivConfig> cs = fast64_edge_shapes();
+  cs.push_back(DivConfig{});
+  for (const DivConfig& c : cs) {
+    const uint64_t nlo = 1ull << (c.num_bits - 1), nhi = 2 * nlo - 1;
+    const uint64_t dlo = 1ull << (c.den_bits - 1), dhi = 2 * dlo - 1;
+    // Largest and smallest quotients, equal operands, one-off neighbours, the specials.
+    const uint64_t ns[] = {nlo, nlo + 1, nhi, nhi - 1, nlo | (nlo >> 1)};
+    const uint64_t ds[] = {dlo, dlo + 1, dhi, dhi - 1, dlo | (dlo >> 1)};
+    for (uint64_t n : ns)
+      for (uint64_t d : ds) {
+        EXPECT_EQ(div_sig_fast64(c, n, d), div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+        EXPECT_EQ(div_sig_fast64(c, n, d), ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d))
+            << div_label(c) << " n=" << n << " d=" << d;
+      }
+    for (uint64_t d : ds) EXPECT_EQ(div_sig_fast64(c, 0, d), div_sig_exact(c, 0, d));
+    for (uint64_t n : ns) EXPECT_EQ(div_sig_fast64(c, n, 0), div_sig_exact(c, n, 0));
+  }
+  // The rounding carry-out (RoundingCarryOutRenormalises): 2 − 2^−31 → 2^23·2^+1.
+  const DivConfig c;
+  EXPECT_EQ(div_sig_fast64(c, 0xFFFFFFFFull, 1ull << 31), (DivSig{1ull << 23, 1}));
 }

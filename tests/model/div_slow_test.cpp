@@ -1,0 +1,64 @@
+// The divider's inline 64-bit fast path (div_sig_fast64, docs/speed.md "Divider") against
+// div_sig_exact on 10^8 random operand pairs plus constructed ties at the default widths and
+// 10^7 at the fast path's limit W + qb = 63 (label slow: about a minute of one core).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "model/arith/div.hpp"
+
+using namespace fxr;
+
+namespace {
+
+uint64_t count_mismatches(const DivConfig& c, uint64_t count, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
+  uint64_t bad = 0;
+  for (uint64_t i = 0; i < count; ++i) {
+    const uint64_t n = nlo + rng() % nlo, d = dlo + rng() % dlo;
+    if (div_sig_fast64(c, n, d) != div_sig_exact(c, n, d) && ++bad <= 5)
+      ADD_FAILURE() << "n=" << n << " d=" << d;
+  }
+  // Exact ties: n/d = (q + ½)·2^−(qb−1) with d = m·2^qb, n = (2q + 1)·m (halved when it
+  // overflows nb bits and is even), and its neighbours.
+  const int qb = c.quot_bits, db = c.den_bits, nb = c.num_bits;
+  for (int i = 0; i < 1000000 && db - 1 - qb >= 0; ++i) {
+    const uint64_t m = (1ull << (db - 1 - qb)) + rng() % (1ull << (db - 1 - qb));
+    const uint64_t q = (1ull << (qb - 1)) + rng() % (1ull << (qb - 1));
+    unsigned __int128 a = (unsigned __int128)(2 * q + 1) * m;
+    if (a >> nb) {
+      if (a & 1) continue;
+      a >>= 1;
+    }
+    for (int delta = -1; delta <= 1; ++delta) {
+      const uint64_t n = (uint64_t)a + delta, d = m << qb;
+      if ((n >> (nb - 1)) != 1) continue;
+      if (div_sig_fast64(c, n, d) != div_sig_exact(c, n, d) && ++bad <= 5) ADD_FAILURE() << "tie n=" << n << " d=" << d;
+    }
+  }
+  return bad;
+}
+
+DivConfig shape(int nb, int db, int qb) {
+  DivConfig c;
+  c.num_bits = nb;
+  c.den_bits = db;
+  c.quot_bits = qb;
+  return c;
+}
+
+}  // namespace
+
+TEST(DivFast64Slow, BitIdenticalToExactOnHundredMillionAtDefaultWidths) {
+  const DivConfig c;
+  ASSERT_TRUE(div_fast64_ok(c));
+  EXPECT_EQ(count_mismatches(c, 100'000'000, 101), 0u);
+}
+
+TEST(DivFast64Slow, BitIdenticalToExactAtTheWidthLimit) {
+  for (const DivConfig& c : {shape(39, 39, 24), shape(32, 32, 31), shape(20, 39, 24)}) {
+    ASSERT_TRUE(div_fast64_ok(c));
+    EXPECT_EQ(count_mismatches(c, 10'000'000, 102), 0u) << c.num_bits << "/" << c.den_bits << "/" << c.quot_bits;
+  }
+}
