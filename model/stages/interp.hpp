@@ -43,13 +43,12 @@ inline void floor_divmod(i128 a, i128 d, i128& q, i128& r) {
   if (r < 0) r += d, q -= 1;
 }
 
-// Exact stepping of RNE(Z / den) along +x.
-struct DepthStepper {
-  i128 q = 0, r = 0, dq = 0, dr = 0, den = 1, max_code = 0;
-  DepthStepper(const DepthSetup& s, int i, int j) : den(s.den), max_code(s.max_code) {
-    floor_divmod(s.z.at(i, j), den, q, r);
-    floor_divmod(s.z.dx, den, dq, dr);
-  }
+// Exact stepping of RNE(Z / den) along +x, in the integer type T (i128: the reference; int64_t:
+// the fast path, used only where depth_step_fits64 proves every value of the span fits).
+template <class T>
+struct DepthStepperT {
+  T q = 0, r = 0, dq = 0, dr = 0, den = 1, max_code = 0;
+  DepthStepperT() = default;
   void step_x() {
     q += dq;
     r += dr;
@@ -58,10 +57,35 @@ struct DepthStepper {
   // Round to nearest, ties to even.
   // Clamped to [0, max_code] (acts only on attribute planes, see DepthSetup).
   uint32_t code() const {
-    const i128 c = rne_round_up<i128>(q, r, den) ? q + 1 : q;
+    const T c = rne_round_up<T>(q, r, den) ? q + 1 : q;
     return (uint32_t)(c < 0 ? 0 : c > max_code ? max_code : c);
   }
 };
+struct DepthStepper : DepthStepperT<i128> {
+  DepthStepper(const DepthSetup& s, int i, int j) {
+    den = s.den;
+    max_code = s.max_code;
+    floor_divmod(s.z.at(i, j), den, q, r);
+    floor_divmod(s.z.dx, den, dq, dr);
+  }
+};
+
+// Wide-to-narrow test (docs/speed.md "Depth stepper"): true when `steps` calls of step_x from
+// dz keep every value of DepthStepperT<int64_t> exact: den, max_code < 2^61 (so r, r + dr < 2den
+// and 2r < 2^62), |q| + steps·(|dq| + 1) < 2^61 (q moves by dq or dq + 1 per step; c ≤ q + 1).
+inline bool depth_step_fits64(const DepthStepperT<i128>& dz, int64_t steps) {
+  const i128 lim = (i128)1 << 61;
+  if (steps < 0 || dz.den >= lim || dz.max_code >= lim || dz.dr < 0 || dz.r < 0) return false;
+  const i128 aq = dz.q < 0 ? -dz.q : dz.q, adq = dz.dq < 0 ? -dz.dq : dz.dq;
+  if (aq >= lim || adq >= lim) return false;
+  return aq + (i128)steps * (adq + 1) < lim;
+}
+inline DepthStepperT<int64_t> narrow64(const DepthStepperT<i128>& w) {
+  DepthStepperT<int64_t> n;
+  n.q = (int64_t)w.q, n.r = (int64_t)w.r, n.dq = (int64_t)w.dq, n.dr = (int64_t)w.dr;
+  n.den = (int64_t)w.den, n.max_code = (int64_t)w.max_code;
+  return n;
+}
 
 // ---- the stage ------------------------------------------------------------------------------
 
@@ -122,15 +146,25 @@ class InterpStage {
         s_.num_exp[m] = t.interp.num_exp[m];
       }
     }
-    for (int i = in.x0; i <= in.x1; ++i) {
-      s_.x = i;
-      s_.depth = dz.code();
-      emit(static_cast<const Out&>(s_));
-      dz.step_x();
-      if (nv > 0) {
-        s_.den += t.interp.den.dx;
-        for (int m = 0; m < nv; ++m) s_.num[m] += t.interp.num[m].dx;
+    // The depth code stepped in int64_t where the span provably fits (depth_step_fits64),
+    // else in i128: the same codes (DepthStep64.* in tests/model/interp_test.cpp).
+    const auto run = [&](auto& z) {
+      for (int i = in.x0; i <= in.x1; ++i) {
+        s_.x = i;
+        s_.depth = z.code();
+        emit(static_cast<const Out&>(s_));
+        z.step_x();
+        if (nv > 0) {
+          s_.den += t.interp.den.dx;
+          for (int m = 0; m < nv; ++m) s_.num[m] += t.interp.num[m].dx;
+        }
       }
+    };
+    if (depth_step_fits64(dz, (int64_t)in.x1 - in.x0 + 1)) {
+      DepthStepperT<int64_t> z = narrow64(dz);
+      run(z);
+    } else {
+      run(dz);
     }
   }
 

@@ -340,3 +340,80 @@ TEST(Interp, NarrowDividerOperandsStayWithinTheirBound) {
   print("num/den bits = 26", e);
   EXPECT_EQ(e.over_bound, 0);
 }
+
+// ---- the depth stepper's int64_t fast path against the i128 one and the direct quotient ------
+
+namespace {
+
+// RNE(z / den) clamped to [0, max_code], written from the definition (no stepping).
+uint32_t direct_code(__int128 z, __int128 den, __int128 max_code) {
+  __int128 q = z / den, r = z % den;
+  if (r < 0) r += den, q -= 1;
+  if (2 * r > den || (2 * r == den && (q & 1))) q += 1;
+  return (uint32_t)(q < 0 ? 0 : q > max_code ? max_code : q);
+}
+
+__int128 rnd_signed(std::mt19937_64& rng, int bits) {
+  const __int128 m = ((__int128)1 << bits) - 1;
+  const __int128 v = (((__int128)rng() << 64) | rng()) & m;
+  return (rng() & 1) ? -v : v;
+}
+
+}  // namespace
+
+TEST(DepthStep64, SameCodesAsI128AndTheDirectQuotientWhereTheTestSaysItFits) {
+  std::mt19937_64 rng(1414);
+  int narrow = 0, wide = 0;
+  for (int it = 0; it < 200000; ++it) {
+    DepthSetup s;
+    const int den_bits = 1 + (int)(rng() % 64);  // up to 2^64: both outcomes of the test
+    s.den = 1 + (rnd_signed(rng, den_bits) < 0 ? -rnd_signed(rng, den_bits) : rnd_signed(rng, den_bits));
+    if (s.den <= 0) s.den = 1;
+    const int zb = (int)(rng() % 90);
+    s.z.c = rnd_signed(rng, zb);
+    s.z.dx = rnd_signed(rng, (int)(rng() % 90));
+    s.max_code = (rng() % 4 == 0) ? (((__int128)1 << (1 + rng() % 62)) - 1) : (((__int128)1 << 32) - 1);
+    const int steps = 1 + (int)(rng() % 64);
+    DepthStepper wide_z(s, 0, 0);
+    if (!depth_step_fits64(wide_z, steps)) {
+      ++wide;
+      continue;
+    }
+    ++narrow;
+    DepthStepperT<int64_t> nz = narrow64(wide_z);
+    for (int k = 0; k < steps; ++k) {
+      const uint32_t want = direct_code(s.z.c + (__int128)k * s.z.dx, s.den, s.max_code);
+      ASSERT_EQ(wide_z.code(), want) << "it " << it << " k " << k;
+      ASSERT_EQ(nz.code(), want) << "it " << it << " k " << k;
+      wide_z.step_x();
+      nz.step_x();
+    }
+  }
+  EXPECT_GT(narrow, 50000);  // both paths are exercised
+  EXPECT_GT(wide, 10000);
+}
+
+TEST(DepthStep64, TheRangeTestRejectsAtTheLimit) {
+  DepthSetup s;
+  s.den = ((__int128)1 << 61) - 1;
+  s.z.c = 0;
+  s.z.dx = 0;
+  EXPECT_TRUE(depth_step_fits64(DepthStepper(s, 0, 0), 1000));
+  s.den = (__int128)1 << 61;
+  EXPECT_FALSE(depth_step_fits64(DepthStepper(s, 0, 0), 1));
+  s.den = 1;  // q = z, dq = dx
+  s.z.dx = 1;
+  s.z.c = ((__int128)1 << 61) - 1 - 2 * 10;  // |q| + 10·(1 + 1) = 2^61 − 1: fits
+  EXPECT_TRUE(depth_step_fits64(DepthStepper(s, 0, 0), 10));
+  EXPECT_FALSE(depth_step_fits64(DepthStepper(s, 0, 0), 11));
+  s.z.c = -s.z.c;  // the negative side the same
+  EXPECT_TRUE(depth_step_fits64(DepthStepper(s, 0, 0), 10));
+  EXPECT_FALSE(depth_step_fits64(DepthStepper(s, 0, 0), 11));
+  // A long span at the edge, stepped both ways: the same codes (clamped at max_code).
+  s.z.c = ((__int128)1 << 61) - 1 - 2 * 1000;
+  s.max_code = ((__int128)1 << 60);
+  DepthStepper w(s, 0, 0);
+  ASSERT_TRUE(depth_step_fits64(w, 1000));
+  DepthStepperT<int64_t> n = narrow64(w);
+  for (int k = 0; k < 1000; ++k, w.step_x(), n.step_x()) ASSERT_EQ(n.code(), w.code()) << k;
+}
