@@ -1,0 +1,255 @@
+// fxr_viewport_lane: one divider lane of stage 4 (fxr_viewport): a correctly rounded quotient
+// n·nmul·2^k / d per clock (initiation interval 1), as a pipelined restoring divider, one stage
+// per quotient bit. Model: the attribute path (model/stages/attr.cpp): attr_window (kind XW / YW),
+// attr_depth (ZD), attr_quotient (FLT); docs/rtl.md "fxr_viewport".
+//
+// Pre (one register): N = n_sig·n_mul (exact), both N and d normalised (fxr_divide_norm), the
+// exponent P of the quotient f = N/d·2^k = f'·2^P, f' = N_norm / (d_norm·2^(NBits−DBits)) ∈ (½, 2):
+// P = msb(N) − msb(d) + k.
+// Divider (QuotBits registers): long division of N_norm by d_norm: bit t of f' (weight 2^−t) from
+// rem = 2·rem + next numerator bit, q_t = rem ≥ d, rem −= q_t·d; sticky = remainder ≠ 0.
+// Post (one register), F = the QuotBits quotient bits (F = floor(f'·2^(QuotBits−1))):
+//   XW / YW  v = RNE(C ± Q), Q = f'·2^P, C = (size + 2·origin)·2^(A−1): Q is aligned to two
+//            fraction bits with the rest jammed into the lowest (Q4 = jam(F·2^(P+3−QuotBits))),
+//            v = RNE((4C ± Q4)/4); range when P > QuotIntXY (then |Q| ≥ 2^QuotIntXY and v is out of
+//            range whatever C is) or v outside a signed PosBits = WindowIntBits + A code.
+//   ZD       v = RNE(Q4/4), saturated to [0, 2^ZFracBits] (z ≤ 0 gives 0; P > QuotIntZ: 2^ZFracBits).
+//   FLT      the AttrSigBits leading bits of F, RNE with guard and sticky, a carry renormalises;
+//            exponent P − (AttrSigBits − 1) (f' ≥ 1) or P − AttrSigBits (f' < 1). A zero numerator
+//            gives {neg, 0, zexp} (zexp: 0, or the varying's own exponent on the affine path).
+// Q4 and the float's guard / sticky jam bits below the rounding position: the rounding of the jammed
+// value equals that of the exact quotient (docs/rtl.md "fxr_viewport").
+// en_i stalls every register (the unit's one pipeline enable).
+module fxr_viewport_lane #(
+  parameter int SigBits = fxr_rec_pkg::ClipVertexSigBits,
+  parameter int ExpBits = fxr_rec_pkg::FxExpBits,
+  parameter int WindowIntBits = fxr_config_pkg::RasterWindowIntBits,
+  parameter int AttrSubBits = fxr_config_pkg::RasterAttrSubpixelBits,
+  parameter int ZFracBits = fxr_config_pkg::RasterZFracBits,
+  parameter int AttrSigBits = fxr_config_pkg::RasterAttrSigBits,
+  // derived
+  parameter int PosBits = WindowIntBits + AttrSubBits,
+  parameter int FloatBits = 1 + AttrSigBits + ExpBits,
+  parameter int ResBits = (PosBits > ZFracBits + 1 ? (PosBits > FloatBits ? PosBits : FloatBits)
+                                                   : (ZFracBits + 1 > FloatBits ? ZFracBits + 1 : FloatBits)),
+  parameter int KBits = ExpBits + 4,
+  // quotient bits: the widest of XW / YW (QuotIntXY + 3), ZD (QuotIntZ + 3) and FLT (AttrSigBits + 2)
+  parameter int QuotBits = (PosBits + 5 > ZFracBits + 4 ? (PosBits + 5 > AttrSigBits + 2 ? PosBits + 5 : AttrSigBits + 2)
+                                                      : (ZFracBits + 4 > AttrSigBits + 2 ? ZFracBits + 4 : AttrSigBits + 2))
+) (
+  input  logic                    clk_i,
+  input  logic                    en_i,
+  input  logic                    rst_ni,
+  input  logic                    valid_i,
+  input  logic [1:0]              kind_i,   // 0 XW, 1 YW, 2 ZD, 3 FLT
+  input  logic                    neg_i,
+  input  logic [SigBits-1:0]      n_sig_i,
+  input  logic [WindowIntBits:0]  n_mul_i,  // viewport size for XW / YW, else 1
+  input  logic [SigBits-1:0]      d_sig_i,  // > 0
+  input  logic signed [KBits-1:0] k_i,      // n_exp − d_exp + (A − 1 | ZFracBits | 0)
+  input  logic signed [ExpBits-1:0] zexp_i, // FLT: the exponent of a zero result
+  input  logic [WindowIntBits:0]  size_x_i, // draw state: viewport_w, _h, _x, _y
+  input  logic [WindowIntBits:0]  size_y_i,
+  input  logic signed [WindowIntBits-1:0] origin_x_i,
+  input  logic signed [WindowIntBits-1:0] origin_y_i,
+  output logic                    valid_o,
+  output logic [ResBits-1:0]      res_o,    // XW / YW: PosBits signed; ZD: ZFracBits + 1; FLT: {neg, sig, exp}
+  output logic                    range_o   // XW / YW: the position is out of range
+);
+  localparam int NBits = SigBits + WindowIntBits + 1;
+  localparam int DBits = SigBits;
+  localparam int RestBits = NBits - DBits + 1;
+  localparam int QuotIntXY = PosBits + 2;
+  localparam int QuotIntZ = ZFracBits + 1;
+  localparam int MsbBits = $clog2(NBits) + 1;
+  localparam int PBits = KBits + 2;
+  localparam int ShBits = $clog2(QuotBits + 1) + 1;
+
+  // ---- pre ----------------------------------------------------------------------------------
+  logic [NBits-1:0] n, n_norm;
+  logic [DBits-1:0] d_norm;
+  logic [MsbBits-1:0] n_msb, d_msb;
+  assign n = NBits'(n_sig_i) * NBits'(n_mul_i);
+  fxr_divide_norm #(.InBits(NBits), .OutBits(NBits), .MsbBits(MsbBits)) u_nn (.x_i(n), .sig_o(n_norm), .msb_o(n_msb));
+  fxr_divide_norm #(.InBits(DBits), .OutBits(DBits), .MsbBits(MsbBits)) u_dn (.x_i(d_sig_i), .sig_o(d_norm), .msb_o(d_msb));
+
+  typedef struct packed {
+    logic [1:0]              kind;
+    logic                    neg;
+    logic                    zero;
+    logic signed [PBits-1:0] p;  // the quotient's exponent (zero FLT: the result exponent)
+  } meta_t;
+
+  meta_t                m_in;
+  logic                 n_zero;
+  logic [DBits:0]       rem_in;
+  logic [RestBits-1:0]  rest_in;
+  assign m_in.kind = kind_i;
+  assign m_in.neg = neg_i;
+  assign n_zero = ~|n;
+  assign m_in.zero = n_zero;
+  assign m_in.p = n_zero ? PBits'(zexp_i)
+                            : PBits'($signed({1'b0, n_msb})) - PBits'($signed({1'b0, d_msb})) + PBits'(k_i);
+  // rem before the first step is N_norm's top DBits − 1 bits: step 0 then shifts in the next.
+  assign rem_in = (DBits + 1)'(n_norm[NBits-1 -: DBits-1]);
+  assign rest_in = n_norm[RestBits-1:0];
+
+  // ---- the divider: stage 0 holds the pre register, stage t + 1 the result of step t ---------
+  meta_t               m_q   [QuotBits+1];
+  logic                v_q   [QuotBits+1];
+  logic [DBits:0]      rem_q [QuotBits+1];
+  logic [RestBits-1:0] rest_q[QuotBits+1];
+  logic [QuotBits-1:0] quo_q [QuotBits+1];
+  logic [DBits-1:0]    d_q   [QuotBits+1];
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) v_q[0] <= 1'b0;
+    else if (en_i) v_q[0] <= valid_i;
+  end
+  always_ff @(posedge clk_i) begin
+    if (en_i) begin
+      m_q[0].kind <= m_in.kind;
+      m_q[0].neg <= m_in.neg;
+      m_q[0].zero <= m_in.zero;
+      m_q[0].p <= m_in.p;
+      rem_q[0] <= rem_in;
+      rest_q[0] <= rest_in;
+      quo_q[0] <= '0;
+      d_q[0] <= d_norm;
+    end
+  end
+
+  for (genvar t = 0; t < QuotBits; t++) begin : g_step
+    logic [DBits:0] r, diff;
+    logic           qb;
+    assign r = {rem_q[t][DBits-1:0], rest_q[t][RestBits-1]};
+    assign diff = r - {1'b0, d_q[t]};
+    assign qb = r >= {1'b0, d_q[t]};
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) v_q[t+1] <= 1'b0;
+      else if (en_i) v_q[t+1] <= v_q[t];
+    end
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        m_q[t+1].kind <= m_q[t].kind;
+        m_q[t+1].neg <= m_q[t].neg;
+        m_q[t+1].zero <= m_q[t].zero;
+        m_q[t+1].p <= m_q[t].p;
+        rem_q[t+1] <= qb ? diff : r;
+        rest_q[t+1] <= {rest_q[t][RestBits-2:0], 1'b0};
+        quo_q[t+1] <= {quo_q[t][QuotBits-2:0], qb};
+        d_q[t+1] <= d_q[t];
+      end
+    end
+  end
+
+  // ---- post ---------------------------------------------------------------------------------
+  meta_t               m;
+  logic [QuotBits-1:0] f;
+  logic                rem_nz;
+  assign m = m_q[QuotBits];
+  assign f = quo_q[QuotBits];
+  assign rem_nz = (|rem_q[QuotBits]) | (|rest_q[QuotBits]);
+
+  // Q4 = jam(F·2^(P+3−QuotBits)) for XW / YW / ZD: a right shift by sr = QuotBits − 3 − P ≥ 0.
+  localparam int SrBits = PBits + 1;
+  logic signed [SrBits-1:0] sr;
+  logic [QuotBits-1:0]      q4, q4_mask;
+  logic [ShBits-1:0]        q4_sh;
+  logic                     q4_all;
+  assign sr = SrBits'(QuotBits - 3) - SrBits'(m.p);
+  assign q4_all = sr >= SrBits'(QuotBits);
+  assign q4_sh = q4_all ? '0 : (sr < 0 ? '0 : ShBits'(sr));
+  assign q4_mask = ~({QuotBits{1'b1}} << q4_sh);
+  logic q4_st, zq_up;
+  assign q4_st = (|(f & q4_mask)) | rem_nz;
+  assign q4 = m.zero ? '0
+                     : q4_all ? QuotBits'(1)  // f' > 0: only the sticky bit is left
+                              : ((f >> q4_sh) | {{(QuotBits - 1){1'b0}}, q4_st});
+
+  // XW / YW: v = RNE((4C ± Q4) / 4).
+  localparam int CBits = WindowIntBits + 2 + AttrSubBits + 2;  // 4C (signed)
+  localparam int XBits = (CBits > QuotBits + 1 ? CBits : QuotBits + 1) + 1;
+  localparam logic signed [XBits-1:0] PosMax = (XBits'(1) <<< (PosBits - 1)) - XBits'(1);
+  localparam logic signed [XBits-1:0] PosMin = -(XBits'(1) <<< (PosBits - 1));
+  logic signed [XBits-1:0] c4, x4, pos;
+  logic                    pos_up, pos_ovf;
+  always_comb begin
+    if (m.kind == 2'd1) c4 = (XBits'(signed'(size_y_i)) + (XBits'(origin_y_i) <<< 1)) <<< (AttrSubBits + 1);
+    else c4 = (XBits'(signed'(size_x_i)) + (XBits'(origin_x_i) <<< 1)) <<< (AttrSubBits + 1);
+  end
+  assign x4 = m.neg ? c4 - XBits'(q4) : c4 + XBits'(q4);
+  assign pos_up = x4[1] & (x4[0] | x4[2]);
+  assign pos = (x4 >>> 2) + $signed(XBits'(pos_up));
+  assign pos_ovf = !m.zero && (m.p > PBits'(QuotIntXY));
+
+  // ZD: v = RNE(Q4 / 4), saturated.
+  localparam int ZBits = ZFracBits + 1;
+  localparam logic [QuotBits-1:0] ZOne = QuotBits'(1) << ZFracBits;
+  logic [QuotBits-1:0] zq;
+  logic [ZBits-1:0]    z;
+  assign zq_up = q4[1] & (q4[0] | q4[2]);
+  assign zq = (q4 >> 2) + {{(QuotBits - 1){1'b0}}, zq_up};
+  always_comb begin
+    if (m.zero || m.neg) z = '0;
+    else if (m.p > PBits'(QuotIntZ) || zq > ZOne) z = ZBits'(ZOne);
+    else z = zq[ZBits-1:0];
+  end
+
+  // FLT: RNE to AttrSigBits bits.
+  logic [AttrSigBits-1:0]   top_sig;
+  logic                     g, st, fup;
+  logic [AttrSigBits:0]     inc;
+  logic [AttrSigBits-1:0]   fsig;
+  logic signed [PBits-1:0]  fexp;
+  always_comb begin
+    if (f[QuotBits-1]) begin
+      top_sig = f[QuotBits-1 -: AttrSigBits];
+      g = f[QuotBits-1-AttrSigBits];
+      st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 1 - AttrSigBits)) - QuotBits'(1))));
+      fexp = m.p - PBits'(AttrSigBits - 1);
+    end else begin
+      top_sig = f[QuotBits-2 -: AttrSigBits];
+      g = f[QuotBits-2-AttrSigBits];
+      st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 2 - AttrSigBits)) - QuotBits'(1))));
+      fexp = m.p - PBits'(AttrSigBits);
+    end
+    fup = g & (st | top_sig[0]);
+    inc = {1'b0, top_sig} + (AttrSigBits + 1)'(fup);
+    if (m.zero) begin
+      fsig = '0;
+      fexp = m.p;
+    end else if (inc[AttrSigBits]) begin
+      fsig = {1'b1, {(AttrSigBits - 1){1'b0}}};
+      fexp = fexp + PBits'(1);
+    end else begin
+      fsig = inc[AttrSigBits-1:0];
+    end
+  end
+
+  logic [ResBits-1:0] res;
+  logic               rng;
+  always_comb begin
+    res = '0;
+    rng = 1'b0;
+    unique case (m.kind)
+      2'd0, 2'd1: begin
+        res = ResBits'(pos[PosBits-1:0]);
+        rng = pos_ovf || pos > PosMax || pos < PosMin;
+      end
+      2'd2: res = ResBits'(z);
+      default: res = ResBits'({m.neg, fsig, fexp[ExpBits-1:0]});
+    endcase
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) valid_o <= 1'b0;
+    else if (en_i) valid_o <= v_q[QuotBits];
+  end
+  always_ff @(posedge clk_i) begin
+    if (en_i) begin
+      res_o <= res;
+      range_o <= rng;
+    end
+  end
+endmodule
