@@ -73,34 +73,33 @@ module fxr_viewport_lane #(
   fxr_divide_norm #(.InBits(NBits), .OutBits(NBits), .MsbBits(MsbBits)) u_nn (.x_i(n), .sig_o(n_norm), .msb_o(n_msb));
   fxr_divide_norm #(.InBits(DBits), .OutBits(DBits), .MsbBits(MsbBits)) u_dn (.x_i(d_sig_i), .sig_o(d_norm), .msb_o(d_msb));
 
-  typedef struct packed {
-    logic [1:0]              kind;
-    logic                    neg;
-    logic                    zero;
-    logic signed [PBits-1:0] p;  // the quotient's exponent (zero FLT: the result exponent)
-  } meta_t;
-
-  meta_t                m_in;
-  logic                 n_zero;
-  logic [DBits:0]       rem_in;
+  // The job's kind, sign, zero flag and the quotient's exponent P (zero FLT: the result exponent)
+  // travel with the quotient bits (separate arrays: Icarus 11 cannot write members of struct arrays).
+  logic                    n_zero;
+  logic signed [PBits-1:0] p_in;
+  logic [DBits-1:0]     rem_in;
   logic [RestBits-1:0]  rest_in;
-  assign m_in.kind = kind_i;
-  assign m_in.neg = neg_i;
   assign n_zero = ~|n;
-  assign m_in.zero = n_zero;
-  assign m_in.p = n_zero ? PBits'(zexp_i)
+  assign p_in = n_zero ? PBits'(zexp_i)
                             : PBits'($signed({1'b0, n_msb})) - PBits'($signed({1'b0, d_msb})) + PBits'(k_i);
   // rem before the first step is N_norm's top DBits − 1 bits: step 0 then shifts in the next.
-  assign rem_in = (DBits + 1)'(n_norm[NBits-1 -: DBits-1]);
+  assign rem_in = DBits'(n_norm[NBits-1 -: DBits-1]);
   assign rest_in = n_norm[RestBits-1:0];
 
   // ---- the divider: stage 0 holds the pre register, stage t + 1 the result of step t ---------
-  meta_t               m_q   [QuotBits+1];
-  logic                v_q   [QuotBits+1];
-  logic [DBits:0]      rem_q [QuotBits+1];
-  logic [RestBits-1:0] rest_q[QuotBits+1];
-  logic [QuotBits-1:0] quo_q [QuotBits+1];
-  logic [DBits-1:0]    d_q   [QuotBits+1];
+  // Flat vectors, slice t the register after step t − 1 (Icarus 11 does not update continuous
+  // assignments from unpacked array words written in other generate scopes, Yosys 0.23 reads no
+  // multi-dimensional packed arrays).
+  localparam int RemBits = DBits;  // the remainder stays below d
+  logic [2*(QuotBits+1)-1:0]        kind_q;
+  logic [QuotBits:0]                neg_q, zero_q, v_q;
+  logic [PBits*(QuotBits+1)-1:0]    p_q;
+  logic [RemBits*(QuotBits+1)-1:0]  rem_q;
+  logic [RestBits*(QuotBits+1)-1:0] rest_q;
+  /* verilator lint_off UNUSEDSIGNAL */  // slice t holds t quotient bits: the top one is read only in the last
+  logic [QuotBits*(QuotBits+1)-1:0] quo_q;
+  /* verilator lint_on UNUSEDSIGNAL */
+  logic [DBits*QuotBits-1:0]        d_q;  // the divisor of steps 0 … QuotBits − 1
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) v_q[0] <= 1'b0;
@@ -108,48 +107,64 @@ module fxr_viewport_lane #(
   end
   always_ff @(posedge clk_i) begin
     if (en_i) begin
-      m_q[0].kind <= m_in.kind;
-      m_q[0].neg <= m_in.neg;
-      m_q[0].zero <= m_in.zero;
-      m_q[0].p <= m_in.p;
-      rem_q[0] <= rem_in;
-      rest_q[0] <= rest_in;
-      quo_q[0] <= '0;
-      d_q[0] <= d_norm;
+      kind_q[(0)*2 +: 2] <= kind_i;
+      neg_q[0] <= neg_i;
+      zero_q[0] <= n_zero;
+      p_q[(0)*PBits +: PBits] <= p_in;
+      rem_q[(0)*RemBits +: RemBits] <= rem_in;
+      rest_q[(0)*RestBits +: RestBits] <= rest_in;
+      quo_q[(0)*QuotBits +: QuotBits] <= '0;
+      d_q[(0)*DBits +: DBits] <= d_norm;
     end
   end
 
   for (genvar t = 0; t < QuotBits; t++) begin : g_step
-    logic [DBits:0] r, diff;
+    logic [DBits:0]   r;
+    logic [DBits-1:0] diff;  // r − d when r ≥ d: below d
     logic           qb;
-    assign r = {rem_q[t][DBits-1:0], rest_q[t][RestBits-1]};
-    assign diff = r - {1'b0, d_q[t]};
-    assign qb = r >= {1'b0, d_q[t]};
+    logic [DBits-1:0]    rem_t;   // the remainder (< d: its top bit is 0)
+    logic [RestBits-1:0] rest_t;
+    logic [QuotBits-2:0] quo_t;   // the quotient bits that are kept
+    assign rem_t = rem_q[(t)*RemBits +: RemBits];
+    assign rest_t = rest_q[(t)*RestBits +: RestBits];
+    assign quo_t = quo_q[(t)*QuotBits +: QuotBits-1];
+    assign r = {rem_t, rest_t[RestBits-1]};
+    assign diff = DBits'(r - {1'b0, d_q[(t)*DBits +: DBits]});
+    assign qb = r >= {1'b0, d_q[(t)*DBits +: DBits]};
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) v_q[t+1] <= 1'b0;
       else if (en_i) v_q[t+1] <= v_q[t];
     end
     always_ff @(posedge clk_i) begin
       if (en_i) begin
-        m_q[t+1].kind <= m_q[t].kind;
-        m_q[t+1].neg <= m_q[t].neg;
-        m_q[t+1].zero <= m_q[t].zero;
-        m_q[t+1].p <= m_q[t].p;
-        rem_q[t+1] <= qb ? diff : r;
-        rest_q[t+1] <= {rest_q[t][RestBits-2:0], 1'b0};
-        quo_q[t+1] <= {quo_q[t][QuotBits-2:0], qb};
-        d_q[t+1] <= d_q[t];
+        kind_q[(t+1)*2 +: 2] <= kind_q[(t)*2 +: 2];
+        neg_q[t+1] <= neg_q[t];
+        zero_q[t+1] <= zero_q[t];
+        p_q[(t+1)*PBits +: PBits] <= p_q[(t)*PBits +: PBits];
+        rem_q[(t+1)*RemBits +: RemBits] <= qb ? diff : r[DBits-1:0];
+        rest_q[(t+1)*RestBits +: RestBits] <= {rest_t[RestBits-2:0], 1'b0};
+        quo_q[(t+1)*QuotBits +: QuotBits] <= {quo_t, qb};
+      end
+    end
+    if (t + 1 < QuotBits) begin : g_d
+      always_ff @(posedge clk_i) begin
+        if (en_i) d_q[(t+1)*DBits +: DBits] <= d_q[(t)*DBits +: DBits];
       end
     end
   end
 
   // ---- post ---------------------------------------------------------------------------------
-  meta_t               m;
-  logic [QuotBits-1:0] f;
-  logic                rem_nz;
-  assign m = m_q[QuotBits];
-  assign f = quo_q[QuotBits];
-  assign rem_nz = (|rem_q[QuotBits]) | (|rest_q[QuotBits]);
+  logic [1:0]              m_kind;
+  logic                    m_neg, m_zero;
+  logic signed [PBits-1:0] m_p;
+  logic [QuotBits-1:0]     f;
+  logic                    rem_nz;
+  assign m_kind = kind_q[(QuotBits)*2 +: 2];
+  assign m_neg = neg_q[QuotBits];
+  assign m_zero = zero_q[QuotBits];
+  assign m_p = $signed(p_q[(QuotBits)*PBits +: PBits]);
+  assign f = quo_q[(QuotBits)*QuotBits +: QuotBits];
+  assign rem_nz = (|rem_q[(QuotBits)*RemBits +: RemBits]) | (|rest_q[(QuotBits)*RestBits +: RestBits]);
 
   // Q4 = jam(F·2^(P+3−QuotBits)) for XW / YW / ZD: a right shift by sr = QuotBits − 3 − P ≥ 0.
   localparam int SrBits = PBits + 1;
@@ -157,13 +172,13 @@ module fxr_viewport_lane #(
   logic [QuotBits-1:0]      q4, q4_mask;
   logic [ShBits-1:0]        q4_sh;
   logic                     q4_all;
-  assign sr = SrBits'(QuotBits - 3) - SrBits'(m.p);
+  assign sr = SrBits'(QuotBits - 3) - SrBits'(m_p);
   assign q4_all = sr >= SrBits'(QuotBits);
   assign q4_sh = q4_all ? '0 : (sr < 0 ? '0 : ShBits'(sr));
   assign q4_mask = ~({QuotBits{1'b1}} << q4_sh);
   logic q4_st, zq_up;
   assign q4_st = (|(f & q4_mask)) | rem_nz;
-  assign q4 = m.zero ? '0
+  assign q4 = m_zero ? '0
                      : q4_all ? QuotBits'(1)  // f' > 0: only the sticky bit is left
                               : ((f >> q4_sh) | {{(QuotBits - 1){1'b0}}, q4_st});
 
@@ -175,13 +190,13 @@ module fxr_viewport_lane #(
   logic signed [XBits-1:0] c4, x4, pos;
   logic                    pos_up, pos_ovf;
   always_comb begin
-    if (m.kind == 2'd1) c4 = (XBits'(signed'(size_y_i)) + (XBits'(origin_y_i) <<< 1)) <<< (AttrSubBits + 1);
-    else c4 = (XBits'(signed'(size_x_i)) + (XBits'(origin_x_i) <<< 1)) <<< (AttrSubBits + 1);
+    if (m_kind == 2'd1) c4 = (XBits'($signed(size_y_i)) + (XBits'(origin_y_i) <<< 1)) <<< (AttrSubBits + 1);
+    else c4 = (XBits'($signed(size_x_i)) + (XBits'(origin_x_i) <<< 1)) <<< (AttrSubBits + 1);
   end
-  assign x4 = m.neg ? c4 - XBits'(q4) : c4 + XBits'(q4);
+  assign x4 = m_neg ? c4 - XBits'(q4) : c4 + XBits'(q4);
   assign pos_up = x4[1] & (x4[0] | x4[2]);
   assign pos = (x4 >>> 2) + $signed(XBits'(pos_up));
-  assign pos_ovf = !m.zero && (m.p > PBits'(QuotIntXY));
+  assign pos_ovf = !m_zero && (m_p > PBits'(QuotIntXY));
 
   // ZD: v = RNE(Q4 / 4), saturated.
   localparam int ZBits = ZFracBits + 1;
@@ -191,8 +206,8 @@ module fxr_viewport_lane #(
   assign zq_up = q4[1] & (q4[0] | q4[2]);
   assign zq = (q4 >> 2) + {{(QuotBits - 1){1'b0}}, zq_up};
   always_comb begin
-    if (m.zero || m.neg) z = '0;
-    else if (m.p > PBits'(QuotIntZ) || zq > ZOne) z = ZBits'(ZOne);
+    if (m_zero || m_neg) z = '0;
+    else if (m_p > PBits'(QuotIntZ) || zq > ZOne) z = ZBits'(ZOne);
     else z = zq[ZBits-1:0];
   end
 
@@ -207,18 +222,18 @@ module fxr_viewport_lane #(
       top_sig = f[QuotBits-1 -: AttrSigBits];
       g = f[QuotBits-1-AttrSigBits];
       st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 1 - AttrSigBits)) - QuotBits'(1))));
-      fexp = m.p - PBits'(AttrSigBits - 1);
+      fexp = m_p - PBits'(AttrSigBits - 1);
     end else begin
       top_sig = f[QuotBits-2 -: AttrSigBits];
       g = f[QuotBits-2-AttrSigBits];
       st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 2 - AttrSigBits)) - QuotBits'(1))));
-      fexp = m.p - PBits'(AttrSigBits);
+      fexp = m_p - PBits'(AttrSigBits);
     end
     fup = g & (st | top_sig[0]);
     inc = {1'b0, top_sig} + (AttrSigBits + 1)'(fup);
-    if (m.zero) begin
+    if (m_zero) begin
       fsig = '0;
-      fexp = m.p;
+      fexp = m_p;
     end else if (inc[AttrSigBits]) begin
       fsig = {1'b1, {(AttrSigBits - 1){1'b0}}};
       fexp = fexp + PBits'(1);
@@ -232,13 +247,13 @@ module fxr_viewport_lane #(
   always_comb begin
     res = '0;
     rng = 1'b0;
-    unique case (m.kind)
+    unique case (m_kind)
       2'd0, 2'd1: begin
         res = ResBits'(pos[PosBits-1:0]);
         rng = pos_ovf || pos > PosMax || pos < PosMin;
       end
       2'd2: res = ResBits'(z);
-      default: res = ResBits'({m.neg, fsig, fexp[ExpBits-1:0]});
+      default: res = ResBits'({m_neg, fsig, fexp[ExpBits-1:0]});
     endcase
   end
 

@@ -63,7 +63,7 @@ module fxr_viewport_snap #(
 
   logic signed [XBits-1:0] c4, x4, code;
   logic                    up;
-  assign c4 = (XBits'(signed'(size_i)) + (XBits'(origin_i) <<< 1)) <<< (SubBits + 2);
+  assign c4 = (XBits'($signed(size_i)) + (XBits'(origin_i) <<< 1)) <<< (SubBits + 2);
   assign x4 = (c_neg_i ^ r_neg_i) ? c4 - XBits'(v4) : c4 + XBits'(v4);
   // RNE(x4 / 8): guard x4[2], sticky x4[1:0].
   assign up = x4[2] & ((|x4[1:0]) | x4[3]);

@@ -18,6 +18,8 @@
 #include <string>
 
 #include "Vfxr_viewport.h"
+#include "Vfxr_viewport_lanes1.h"
+#include "Vfxr_viewport_lanes7.h"
 #include "model/stages/setup.hpp"
 #include "txn/draw_state_ports.hpp"
 #include "txn_harness.hpp"
@@ -43,36 +45,40 @@ TxnOptions opts(const std::string& run, uint64_t seed, unsigned gap, unsigned st
 }
 
 // The draw state fxr_viewport reads, and its range pulses.
+template <class Dut>
 struct Drive {
   fxr::DrawState st;
   int wib = 0;
   uint64_t rejected = 0;
-  TxnHook<Vfxr_viewport> hook() {
-    TxnHook<Vfxr_viewport> h;
+  TxnHook<Dut> hook() {
+    TxnHook<Dut> h;
     h.reset = [this] { rejected = 0; };
-    h.drive = [this](Vfxr_viewport& d) {
+    h.drive = [this](Dut& d) {
       d.viewport_x_i = fxr::tb::state_bits(st.viewport_x, wib);
       d.viewport_y_i = fxr::tb::state_bits(st.viewport_y, wib);
       d.viewport_w_i = fxr::tb::state_bits(st.viewport_w, wib + 1);
       d.viewport_h_i = fxr::tb::state_bits(st.viewport_h, wib + 1);
       d.interp_i = (uint8_t)st.interp;
     };
-    h.observe = [this](Vfxr_viewport& d) { rejected += d.rej_range_o; };
+    h.observe = [this](Dut& d) { rejected += d.rej_range_o; };
     return h;
   }
 };
 
-void run_dump(const std::string& dir, const std::string& name, uint64_t min_rows) {
+template <class Dut = Vfxr_viewport>
+// all_handshakes: no gaps, 25 % / 25 % and 60 % / 70 %; else no gaps and 60 % / 70 % only.
+void run_dump(const std::string& dir, const std::string& name, uint64_t min_rows, bool all_handshakes = true) {
   const SceneStageVectors v = fxr::load_scene_stage(dir, "viewport");
   ASSERT_GE(v.out.rows, min_rows);
   uint64_t dropped = 0;  // inputs with no output: the model's RejectedRange
   for (uint64_t r = 0; r < v.in.rows; ++r) dropped += v.in.row(r)[1] == 0;
   for (auto [seed, gap, stall] : {std::tuple{1u, 0u, 0u}, {2u, 25u, 25u}, {3u, 60u, 70u}}) {
-    Drive dr;
+    if (!all_handshakes && seed == 2) continue;
+    Drive<Dut> dr;
     dr.st = fxr::tb::read_dump_draw_state(dir);
     dr.wib = v.cfg.raster.window_int_bits;
-    const TxnHook<Vfxr_viewport> h = dr.hook();
-    const TxnResult r = fxr::tb::run_txn<Vfxr_viewport>(v, nullptr, opts(name + std::to_string(seed), seed, gap, stall), &h);
+    const TxnHook<Dut> h = dr.hook();
+    const TxnResult r = fxr::tb::run_txn<Dut>(v, nullptr, opts(name + std::to_string(seed), seed, gap, stall), &h);
     EXPECT_TRUE(r.passed()) << "seed " << seed;
     EXPECT_EQ(r.outputs, v.out.rows);
     EXPECT_EQ(r.inputs, v.in.rows);
@@ -88,6 +94,17 @@ void run_dump(const std::string& dir, const std::string& name, uint64_t min_rows
 TEST(ViewportTxn, CommittedDumpMatchesTheModel) { run_dump(kCommitted, "viewport_committed_", 3); }
 
 TEST(ViewportTxn, DefaultSceneMatchesTheModel) { run_dump(kDefault, "viewport_default_", 1000); }
+
+// Other lane counts (tb/txn/fxr_viewport_lanes1.sv, _lanes7.sv): 18 slots with one snap unit; 3
+// slots, the last one partly empty, with two snap units.
+TEST(ViewportTxn, OneLaneMatchesTheModel) {
+  run_dump<Vfxr_viewport_lanes1>(kCommitted, "viewport_lanes1_committed_", 3);
+  run_dump<Vfxr_viewport_lanes1>(kDefault, "viewport_lanes1_default_", 1000, false);
+}
+TEST(ViewportTxn, SevenLanesMatchTheModel) {
+  run_dump<Vfxr_viewport_lanes7>(kCommitted, "viewport_lanes7_committed_", 3);
+  run_dump<Vfxr_viewport_lanes7>(kDefault, "viewport_lanes7_default_", 1000, false);
+}
 
 // ---- expected values from the definition (GMP) ------------------------------------------------
 
@@ -280,13 +297,14 @@ Vtx vtx(double x, double y, double z, double w, double r, double v0 = 0.5, doubl
   return t;
 }
 
+template <class Dut = Vfxr_viewport>
 void run_rows(const Rows& rows, const fxr::DrawState& st, const std::string& name, uint64_t want_drops) {
   for (auto [seed, gap, stall] : {std::tuple{4u, 0u, 0u}, {5u, 40u, 50u}}) {
-    Drive dr;
+    Drive<Dut> dr;
     dr.st = st;
     dr.wib = rows.vectors().cfg.raster.window_int_bits;
-    const TxnHook<Vfxr_viewport> h = dr.hook();
-    const TxnResult r = fxr::tb::run_txn<Vfxr_viewport>(rows.vectors(), nullptr, opts(name + std::to_string(seed), seed, gap, stall), &h);
+    const TxnHook<Dut> h = dr.hook();
+    const TxnResult r = fxr::tb::run_txn<Dut>(rows.vectors(), nullptr, opts(name + std::to_string(seed), seed, gap, stall), &h);
     EXPECT_TRUE(r.passed()) << name << " seed " << seed;
     EXPECT_EQ(r.outputs, rows.vectors().out.rows);
     EXPECT_EQ(dr.rejected, want_drops);
@@ -381,6 +399,7 @@ TEST(ViewportTxn, DirectedRowsMatchExactArithmetic) {
   ASSERT_LT(edrops, er.vectors().in.rows);
   run_rows(rows, st, "viewport_directed_", 0);
   run_rows(er, edge, "viewport_edges_", edrops);
+  run_rows<Vfxr_viewport_lanes1>(er, edge, "viewport_edges_lanes1_", edrops);
   // The affine mode: v_k itself rounded to attr_sig_bits (zero keeps its exponent).
   const fxr::DrawState aff = state(32, 32, 0, 0, fxr::InterpMode::Affine);
   Rows ar(base);
@@ -422,6 +441,7 @@ TEST(ViewportTxn, RandomRowsMatchExactArithmetic) {
     }
     EXPECT_LT(drops, 400u);
     run_rows(rows, st, "viewport_random_" + std::to_string(st.viewport_w) + "_", drops);
+    run_rows<Vfxr_viewport_lanes7>(rows, st, "viewport_random_lanes7_" + std::to_string(st.viewport_w) + "_", drops);
   }
 }
 
@@ -434,7 +454,7 @@ TEST(ViewportTxn, CorruptedExpectedRowIsReported) {
     if (v.out.lay[f].name == "v1_ay") col = f;
   ASSERT_GT(col, 0u);
   v.out.data[2 * v.out.lay.size() + col] ^= 1;
-  Drive dr;
+  Drive<Vfxr_viewport> dr;
   dr.st = fxr::tb::read_dump_draw_state(kCommitted);
   dr.wib = v.cfg.raster.window_int_bits;
   const TxnHook<Vfxr_viewport> h = dr.hook();
