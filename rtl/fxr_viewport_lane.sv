@@ -120,17 +120,19 @@ module fxr_viewport_lane #(
 
   for (genvar t = 0; t < QuotBits; t++) begin : g_step
     logic [DBits:0]   r;
+    logic [DBits+1:0] sub;   // r − d; its sign bit is the quotient bit's complement
     logic [DBits-1:0] diff;  // r − d when r ≥ d: below d
-    logic           qb;
-    logic [DBits-1:0]    rem_t;   // the remainder (< d: its top bit is 0)
+    logic             qb;
+    logic [DBits-1:0]    rem_t;   // the remainder (< d)
     logic [RestBits-1:0] rest_t;
     logic [QuotBits-2:0] quo_t;   // the quotient bits that are kept
     assign rem_t = rem_q[(t)*RemBits +: RemBits];
     assign rest_t = rest_q[(t)*RestBits +: RestBits];
     assign quo_t = quo_q[(t)*QuotBits +: QuotBits-1];
     assign r = {rem_t, rest_t[RestBits-1]};
-    assign diff = DBits'(r - {1'b0, d_q[(t)*DBits +: DBits]});
-    assign qb = r >= {1'b0, d_q[(t)*DBits +: DBits]};
+    assign sub = {1'b0, r} - {2'b0, d_q[(t)*DBits +: DBits]};
+    assign qb = !sub[DBits+1];
+    assign diff = sub[DBits-1:0];
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) v_q[t+1] <= 1'b0;
       else if (en_i) v_q[t+1] <= v_q[t];
