@@ -26,7 +26,7 @@ for v in "${vars[@]}"; do
     l1) top=fxr_viewport; set="chparam -set Lanes 1 fxr_viewport;" ;;
     l3) top=fxr_viewport; set="chparam -set Lanes 3 fxr_viewport;" ;;
     l7) top=fxr_viewport; set="chparam -set Lanes 7 fxr_viewport;" ;;
-    g1 | g3 | g7) top=fxr_viewport_core; set="chparam -set Lanes ${v#g} fxr_viewport_core; hierarchy -top fxr_viewport_core; blackbox *fxr_viewport_lane *fxr_viewport_snap;" ;;
+    g1 | g3 | g7) top=fxr_viewport_core; set="chparam -set Lanes ${v#g} fxr_viewport_core; hierarchy -top fxr_viewport_core; rename -top fxr_viewport_core; blackbox *fxr_viewport_lane *fxr_viewport_snap; hierarchy -top fxr_viewport_core;" ;;
     lane) top=fxr_viewport_lane; set="" ;;
     snap) top=fxr_viewport_snap; set="" ;;
     *) echo "synth_viewport.sh: unknown variant '$v'" >&2; exit 2 ;;
