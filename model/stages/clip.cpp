@@ -3,6 +3,7 @@
 #include "model/stages/clip.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace fxr {
 
@@ -111,6 +112,8 @@ ClipWidths clip_widths(const Config& cfg, int num_varyings) {
   cw.pos_sig_bits = cfg.raster.clip_sig_bits;
   cw.w_sig_bits = cfg.recip.in_sig_bits;
   cw.num_varyings = num_varyings;
+  cw.rtl_record_sig_bits = clip_vertex_sig_bits(cfg);
+  cw.rtl_with_wa = clip_vertex_has_wa(cfg);
   return cw;
 }
 
@@ -368,7 +371,7 @@ FxFloat div_round(const Dy& p, const Dy& q, int bits, bool* of) {
 }  // namespace
 
 ClipVtx clip_intersect(const ClipWidths& cw, const PlaneEq& pl, const ClipVtx& s, const ClipVtx& e,
-                       bool* overflow) {
+                       bool* overflow, int64_t* rtl_cycles) {
   bool of = false;
   Dy ds = plane_distance(pl, s, &of), de = plane_distance(pl, e, &of);
   // q = d_s − d_e ≠ 0 (strictly opposite signs); make it positive by negating both distances
@@ -381,6 +384,13 @@ ClipVtx clip_intersect(const ClipWidths& cw, const PlaneEq& pl, const ClipVtx& s
   }
   auto component = [&](const FxFloat& cs, const FxFloat& ce, int bits) {
     const Dy num = dy_add(dy_mul(dy_from(ce), ds, &of), dy_neg(dy_mul(dy_from(cs), de, &of)), &of);
+    if (rtl_cycles) {
+      // rtl/fxr_clip.sv: set-up, the shift-and-add over the record's significand plus the
+      // exponent distance (a zero takes the other value's exponent), normalise, the restoring
+      // division (skipped for an exact zero), round.
+      const int xs = cs.sig ? cs.exp : ce.exp, xe = ce.sig ? ce.exp : xs;
+      *rtl_cycles += 1 + cw.rtl_record_sig_bits + std::abs(xs - xe) + 1 + (num.m.n == 0 ? 0 : bits + 3) + 1;
+    }
     return div_round(num, q, bits, &of);
   };
   ClipVtx r;
@@ -388,7 +398,13 @@ ClipVtx clip_intersect(const ClipWidths& cw, const PlaneEq& pl, const ClipVtx& s
   r.p[3] = component(s.p[3], e.p[3], cw.w_sig_bits);
   // The attribute path's w: the same exact intersection of the endpoints' attribute w, rounded
   // to the position width (where p[3] is rounded to the reciprocal unit's input width).
-  r.wa = component(s.attr_w(), e.attr_w(), cw.pos_sig_bits);
+  if (rtl_cycles) *rtl_cycles += kClipRtlDistClocks;
+  {
+    int64_t* const all = rtl_cycles;  // the RTL makes the attribute w only when the record has it
+    if (!cw.rtl_with_wa) rtl_cycles = nullptr;
+    r.wa = component(s.attr_w(), e.attr_w(), cw.pos_sig_bits);
+    rtl_cycles = all;
+  }
   for (int k = 0; k < cw.num_varyings; ++k) r.v[k] = component(s.v[k], e.v[k], cw.pos_sig_bits);
   if (of) *overflow = true;
   return r;
@@ -396,6 +412,7 @@ ClipVtx clip_intersect(const ClipWidths& cw, const PlaneEq& pl, const ClipVtx& s
 
 ClipPolygon clip_triangle(const GuardBand& gb, const ClipWidths& cw, const ClipVtx in[3]) {
   ClipPolygon poly;
+  poly.rtl_cycles = 1;  // the input transfer
   poly.n = 3;
   for (int i = 0; i < 3; ++i) poly.v[i] = in[i];
   ClipVtx next[kClipMaxPolyVerts];
@@ -407,23 +424,28 @@ ClipPolygon clip_triangle(const GuardBand& gb, const ClipWidths& cw, const ClipV
       side[i] = plane_side(pl, poly.v[i]);
       any_out |= side[i] < 0;
     }
+    poly.rtl_cycles += poly.n;  // one side per clock
     if (!any_out) continue;  // no edge crosses: the pass would return its input
     int m = 0;
+    poly.rtl_cycles += 1;  // the end of the pass
     for (int i = 0; i < poly.n; ++i) {
       const int j = (i + 1) % poly.n;  // edge v[i] → v[j]
+      poly.rtl_cycles += 1;  // one clock per edge (copy)
       if (m + 2 > kClipMaxPolyVerts) {  // cannot happen for a convex polygon (m ≤ n + 1)
         poly.overflow = true;
         break;
       }
       if (side[i] >= 0) next[m++] = poly.v[i];
       if ((side[i] > 0 && side[j] < 0) || (side[i] < 0 && side[j] > 0)) {
-        next[m++] = clip_intersect(cw, pl, poly.v[i], poly.v[j], &poly.overflow);
+        next[m++] = clip_intersect(cw, pl, poly.v[i], poly.v[j], &poly.overflow, &poly.rtl_cycles);
         ++poly.created;
       }
     }
     poly.n = m < 3 ? 0 : m;
     for (int i = 0; i < poly.n; ++i) poly.v[i] = next[i];
   }
+  // The fan, one triangle per clock; nothing to emit (clipped away, overflow): one clock.
+  poly.rtl_cycles += (!poly.overflow && poly.n >= 3) ? poly.n - 2 : 1;
   return poly;
 }
 
@@ -437,8 +459,8 @@ StageCost ClipStage::cost(const Config& cfg) {
     for (int p = 0; p < 4; ++p) c.add_mult(sb, coef), c.add_mult(sb, coef);
   c.add_mult(sb, 2 * sb + coef);
   c.add_mult(sb, 2 * sb + coef);
-  c.latency = kNumClipPlanes;  // one plane per clock (estimate until rtl/ has the stage)
-  c.ii = 1;                    // trivially accepted triangles; a clipped one takes longer
+  c.latency = 1;  // rtl/fxr_clip.sv: trivially accepted triangles leave from the output register
+  c.ii = 1;       // one per clock; a clipped triangle occupies the stage ClipStage::rtl_cycles()
   c.adder_bits = 3 * (int64_t)kNumClipPlanes * (sb + coef);
   c.ff_bits = record_bits<ClippedTriangle>(cfg, kMaxVaryings);
   return c;

@@ -78,6 +78,10 @@ struct ClipWidths {
   int pos_sig_bits = 32;  // x_c, y_c, z_c and the varyings: RasterConfig.clip_sig_bits
   int w_sig_bits = 24;    // w_c: recip.in_sig_bits, so the reciprocal unit sees it unrounded
   int num_varyings = 0;
+  // The RTL's cycle count (ClipPolygon::rtl_cycles): the record's significand width, which its
+  // shift-and-add walks, and whether the record has the attribute w (only then is it made).
+  int rtl_record_sig_bits = 32;
+  bool rtl_with_wa = true;
 };
 ClipWidths clip_widths(const Config& cfg, int num_varyings);
 
@@ -87,13 +91,19 @@ ClipWidths clip_widths(const Config& cfg, int num_varyings);
 // flushed to zero below 2^kClipFlushLeadExp. Symmetric in s and e. *overflow is set if an
 // internal bound was exceeded (cannot happen for float32 inputs; then the result is unusable).
 ClipVtx clip_intersect(const ClipWidths& cw, const PlaneEq& pl, const ClipVtx& s, const ClipVtx& e,
-                       bool* overflow);
+                       bool* overflow, int64_t* rtl_cycles = nullptr);
+
+// rtl/fxr_clip.sv's clocks per new vertex before its components: d_s, d_e (two terms each) and
+// |d_s − d_e| normalised (docs/rtl.md, "fxr_clip"; the clock count of a clipped triangle is
+// ClipPolygon::rtl_cycles).
+inline constexpr int kClipRtlDistClocks = 5;
 
 struct ClipPolygon {
   int n = 0;                       // number of vertices (0: clipped away)
   ClipVtx v[kClipMaxPolyVerts];
   int created = 0;                 // intersection vertices made (counted once per creation)
   bool overflow = false;
+  int64_t rtl_cycles = 0;          // rtl/fxr_clip.sv's clocks from the input transfer to done
 };
 
 // Contract: Sutherland–Hodgman of triangle `in` against every plane that some current vertex
@@ -135,6 +145,7 @@ class ClipStage {
   template <class Emit>
   ClipReport step(const In& in, Emit&& emit) {
     ClipReport r;
+    rtl_cycles_ = 1;  // the trivial cases: one clock (the RTL's fast path)
     if (!gb_.valid) return r.outcome = ClipOutcome::RejectedViewport, r;
     const uint32_t oc0 = outcode(gb_, in.v[0]), oc1 = outcode(gb_, in.v[1]), oc2 = outcode(gb_, in.v[2]);
     if (oc0 & oc1 & oc2) return r.outcome = ClipOutcome::CulledOutside, r;  // all outside one plane
@@ -146,6 +157,7 @@ class ClipStage {
     }
     const ClipPolygon poly = clip_triangle(gb_, cw_, in.v);
     r.vertices_created = poly.created;
+    rtl_cycles_ = poly.rtl_cycles;
     if (poly.overflow) return r.outcome = ClipOutcome::RejectedOverflow, r;
     if (poly.n < 3) return r.outcome = ClipOutcome::ClippedAway, r;  // clip_triangle gives 0 or ≥ 3
     r.outcome = ClipOutcome::Clipped;
@@ -158,14 +170,20 @@ class ClipStage {
     return r;
   }
 
-  // Planned RTL: outcodes (2 multipliers per plane test) and one intersection unit
-  // (clip_intersect: exact products, one division per component), iterative over planes.
+  // RTL (rtl/fxr_clip.sv): 21 exact plane-side units (2 multipliers each) for the one-clock
+  // trivial accept / reject (latency 1, II 1), and one iterative clipper: a side unit, a
+  // sequential exact-distance term (one multiplier), an MSB-first shift-and-add numerator and a
+  // restoring divider. A clipped triangle occupies the stage rtl_cycles() clocks.
   static StageCost cost(const Config& cfg);
+  // Clocks the last step()'s input occupied rtl/fxr_clip.sv (input transfer to done, without
+  // output back-pressure): 1 for the trivial cases, ClipPolygon::rtl_cycles for a clipped one.
+  int64_t rtl_cycles() const { return rtl_cycles_; }
 
  private:
   GuardBand gb_;
   ClipWidths cw_;
   int nv_;
+  int64_t rtl_cycles_ = 0;
   ClippedTriangle out_;
 };
 

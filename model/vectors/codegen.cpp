@@ -2,6 +2,7 @@
 #include "model/vectors/codegen.hpp"
 
 #include "model/config/param.hpp"
+#include "model/stages/clip.hpp"
 #include "model/stages/input.hpp"
 #include "model/stages/interp.hpp"
 #include "model/stages/line_setup.hpp"
@@ -162,6 +163,18 @@ void emit_sv_record_package(std::ostream& os, const Config& cfg, int num_varying
      << ";  // 1: clipped_triangle_t / recip_triangle_t list v<i>_wa after v<i>_w\n";
   emit_record_struct<InputTriangle>(os, "input_triangle", s);
   emit_record_struct<ExactTriangle>(os, "exact_triangle", s);
+  // Stage 2 (rtl/fxr_clip.sv): its output record and the clipper's constants (model/stages/clip.hpp).
+  os << "  localparam int ClipWMinExp = " << kWMinExp << ";  // the w_min plane: w >= 2^ClipWMinExp\n";
+  os << "  localparam int ClipFlushLeadExp = " << kClipFlushLeadExp << ";  // new values leading below 2^this: +-0\n";
+  os << "  localparam int ClipGuardMarginPx = " << kGuardMarginPx << ";  // guard band margin inside the window format\n";
+  os << "  localparam int ClipMaxPolyVerts = " << kClipMaxPolyVerts << ";  // polygon buffer (overflow beyond)\n";
+  os << "  localparam int ClipNumPlanes = " << (int)kNumClipPlanes << ";  // w_min, near, far, left, right, bottom, top\n";
+  os << "  localparam int ClipOutcomeBits = 3;  // fxr::ClipOutcome's six values\n";
+  // fxr_clip's done_outcome_o: the values of fxr::ClipOutcome.
+  for (auto [o, n] : {std::pair{ClipOutcome::Accepted, "Accepted"}, {ClipOutcome::Clipped, "Clipped"},
+                      {ClipOutcome::CulledOutside, "CulledOutside"}, {ClipOutcome::ClippedAway, "ClippedAway"},
+                      {ClipOutcome::RejectedViewport, "RejectedViewport"}, {ClipOutcome::RejectedOverflow, "RejectedOverflow"}})
+    os << "  localparam int ClipOutcome" << n << " = " << (int)o << ";\n";
   emit_record_struct<ClippedTriangle>(os, "clipped_triangle", s);  // clip -> recip
   emit_record_struct<RecipTriangle>(os, "recip_triangle", s);      // recip -> viewport
   emit_record_struct<SetupTriangle>(os, "setup_triangle", s);
