@@ -10,22 +10,22 @@
 //   in_valid_i / in_ready_o        input handshake
 //   in_i                           fxr_rec_pkg::exact_triangle_t (stage 1's output)
 //   out_valid_o / out_ready_i      output handshake
-//   out_o                          fxr_rec_pkg::clipped_triangle_t (v<i>_wa when ClipHasWa)
+//   out_o                          fxr_rec_pkg::clipped_triangle_t (v<i>_wa when ClipVertexHasWa)
 //   out_last_o                     the input's final output (the dumps' `last`)
-//   done_o                         pulse: the outcome of one input primitive is decided (at the
-//                                  input transfer for the trivial cases, with the last output
-//                                  loaded, or when the clipper ends with none)
+//   done_o                         pulse, registered: the outcome of one input primitive was decided
+//                                  in the clock before (its input transfer for the trivial cases,
+//                                  its last output loaded, or the clipper ending with none)
 //   done_outcome_o                 its fxr::ClipOutcome (fxr_rec_pkg::ClipOutcome*)
 //   done_created_o                 new vertices made (RasterStats::clip_vertices_created)
 //
 // Function (docs/pipeline.md, stage 2):
 //  * Fast path, one clock per triangle (in_ready_o = idle and the output register free): 21
-//    fxr_clip_side units give the exact outcodes of the 3 vertices against the 7 planes (w_min,
+//    exact plane-side units (plane_side()) give the outcodes of the 3 vertices against the 7 planes (w_min,
 //    near, far and the guard band derived here from the viewport); all outside one plane: trivial
 //    reject (no output); all inside: trivial accept (the triangle, attribute w = w_c).
 //  * Otherwise the iterative clipper, Sutherland-Hodgman over a two-bank polygon buffer of
-//    ClipMaxPolyVerts vertices: per plane one clock per vertex for its side (one fxr_clip_side);
-//    a plane no vertex is outside of is skipped; per edge a kept vertex is copied and an edge with
+//    ClipMaxPolyVerts vertices: per plane one clock per vertex for its side (one more plane_side())
+//    and one to decide; a plane no vertex is outside of is skipped; per edge a kept vertex is copied and an edge with
 //    strictly opposite sides makes a new vertex: the exact plane distances d_s, d_e as fixed-point
 //    integers (lsb 2^LsbMin, DistBits wide: 4 clocks), q = |d_s - d_e| normalised (1 clock), then
 //    per component c = (c_e*d_s - c_s*d_e)/(d_s - d_e): the exact numerator by an MSB-first
@@ -95,6 +95,7 @@ module fxr_clip (
   localparam int CM = PB + 1;                     // |W|, |H|, |n_left| ... < 2^(PB + 1)
   localparam int DW = CM + FixBits + 2;           // plane distance, signed, units 2^LsbMin
   localparam int QW = DW;                         // |d_s - d_e| < 2^DW
+  localparam int DW1 = DW + 1;
   localparam int PW = SB + DW + FixBits;          // numerator sig_e*d_s*2^oe - sig_s*d_e*2^os, signed
   localparam int AW = PW - 1;                     // its magnitude
   localparam int ALB = AW - QW;                   // numerator bits below the divisor's width
@@ -123,9 +124,12 @@ module fxr_clip (
   assign n_top = NB'(2) * (Lim - vy) - vh;
 
   // Plane p: d = a*comp + b*w (sign, magnitude), or the w_min plane (model: plane_eq()).
-  logic [NumPlanes-1:0] pl_wmin, pl_a_neg, pl_b_neg;
-  logic [NumPlanes-1:0][1:0] pl_comp;
-  logic [NumPlanes-1:0][CM-1:0] pl_a_mag, pl_b_mag;
+  localparam int PlaneSlots = 1 << PlaneBits;  // every plane index a register can hold (the rest 0)
+  logic [PlaneSlots-1:0] pl_wmin, pl_a_neg, pl_b_neg;
+  // Flat vectors (Yosys 0.23 has no multidimensional packed arrays): plane p's fields at
+  // [p*2 +: 2] and [p*CM +: CM].
+  logic [2*PlaneSlots-1:0] pl_comp;
+  logic [CM*PlaneSlots-1:0] pl_a_mag, pl_b_mag;
   function automatic logic [CM-1:0] mag_of(input logic signed [NB-1:0] x);
     mag_of = CM'(x < 0 ? -x : x);
   endfunction
@@ -136,18 +140,18 @@ module fxr_clip (
     pl_comp = '0;
     pl_a_mag = '0;
     pl_b_mag = '0;
-    pl_wmin[0] = 1'b1; pl_b_mag[0] = CM'(1);                            // w_min: w - 2^WMinExp
-    pl_comp[1] = 2'd2; pl_a_mag[1] = CM'(1);                            // near: z
-    pl_comp[2] = 2'd2; pl_a_mag[2] = CM'(1); pl_a_neg[2] = 1'b1;        // far: w - z
-    pl_b_mag[2] = CM'(1);
-    pl_comp[3] = 2'd0; pl_a_mag[3] = mag_of(vw);                        // left: W*x - n_left*w
-    pl_b_mag[3] = mag_of(n_left); pl_b_neg[3] = !(n_left < 0);
-    pl_comp[4] = 2'd0; pl_a_mag[4] = mag_of(vw); pl_a_neg[4] = 1'b1;    // right: n_right*w - W*x
-    pl_b_mag[4] = mag_of(n_right); pl_b_neg[4] = n_right < 0;
-    pl_comp[5] = 2'd1; pl_a_mag[5] = mag_of(vh);                        // bottom: H*y - n_bottom*w
-    pl_b_mag[5] = mag_of(n_bottom); pl_b_neg[5] = !(n_bottom < 0);
-    pl_comp[6] = 2'd1; pl_a_mag[6] = mag_of(vh); pl_a_neg[6] = 1'b1;    // top: n_top*w - H*y
-    pl_b_mag[6] = mag_of(n_top); pl_b_neg[6] = n_top < 0;
+    pl_wmin[0] = 1'b1; pl_b_mag[0*CM +: CM] = CM'(1);                            // w_min: w - 2^WMinExp
+    pl_comp[1*2 +: 2] = 2'd2; pl_a_mag[1*CM +: CM] = CM'(1);                            // near: z
+    pl_comp[2*2 +: 2] = 2'd2; pl_a_mag[2*CM +: CM] = CM'(1); pl_a_neg[2] = 1'b1;        // far: w - z
+    pl_b_mag[2*CM +: CM] = CM'(1);
+    pl_comp[3*2 +: 2] = 2'd0; pl_a_mag[3*CM +: CM] = mag_of(vw);                        // left: W*x - n_left*w
+    pl_b_mag[3*CM +: CM] = mag_of(n_left); pl_b_neg[3] = !(n_left < 0);
+    pl_comp[4*2 +: 2] = 2'd0; pl_a_mag[4*CM +: CM] = mag_of(vw); pl_a_neg[4] = 1'b1;    // right: n_right*w - W*x
+    pl_b_mag[4*CM +: CM] = mag_of(n_right); pl_b_neg[4] = n_right < 0;
+    pl_comp[5*2 +: 2] = 2'd1; pl_a_mag[5*CM +: CM] = mag_of(vh);                        // bottom: H*y - n_bottom*w
+    pl_b_mag[5*CM +: CM] = mag_of(n_bottom); pl_b_neg[5] = !(n_bottom < 0);
+    pl_comp[6*2 +: 2] = 2'd1; pl_a_mag[6*CM +: CM] = mag_of(vh); pl_a_neg[6] = 1'b1;    // top: n_top*w - H*y
+    pl_b_mag[6*CM +: CM] = mag_of(n_top); pl_b_neg[6] = n_top < 0;
   end
 
   // ---- vertices ---------------------------------------------------------------------------------
@@ -164,39 +168,98 @@ module fxr_clip (
   endfunction
 
   logic [InBits-1:0] in_flat;
-  logic [2:0][XB-1:0] vin;
+  logic [3*XB-1:0] vin;  // vertex v at [(2-v)*XB +: XB]: v0 v1 v2 in record order
   assign in_flat = in_i;
   for (genvar v = 0; v < 3; v++) begin : g_vin
-    assign vin[v] = to_internal(in_flat[InBits - PrimBits - 1 - v * XIn -: XIn]);
+    assign vin[(2-v)*XB +: XB] = to_internal(in_flat[InBits - PrimBits - 1 - v * XIn -: XIn]);
   end
 
-  // ---- fast path: outcodes of the input triangle -----------------------------------------------
-  logic [2:0][NumPlanes-1:0] oc;
-  for (genvar v = 0; v < 3; v++) begin : g_ocv
-    for (genvar p = 0; p < NumPlanes; p++) begin : g_ocp
-      logic [VB-1:0] c, w;
-      logic zero_unused;
-      assign c = comp_of(vin[v], p == 0 ? 3 : (p < 3 ? 2 : (p < 5 ? 0 : 1)));
-      assign w = comp_of(vin[v], 3);
-      fxr_clip_side #(.CoefBits(CM), .SigBits(SB), .ExpBits(EB), .WMinExp(fxr_rec_pkg::ClipWMinExp)) u_side (
-        .a_neg_i(pl_a_neg[p]), .a_mag_i(pl_a_mag[p]), .b_neg_i(pl_b_neg[p]), .b_mag_i(pl_b_mag[p]),
-        .wmin_i(pl_wmin[p]),
-        .c_neg_i(c[VB-1]), .c_sig_i(c[VB-2 -: SB]), .c_exp_i(c[EB-1:0]),
-        .w_neg_i(w[VB-1]), .w_sig_i(w[VB-2 -: SB]), .w_exp_i(w[EB-1:0]),
-        .neg_o(oc[v][p]), .zero_o(zero_unused));
+  // ---- the exact side of a plane (model: plane_side()) ------------------------------------------
+  // d = a*c + b*w, or w - 2^ClipWMinExp (w_min plane). Each product is a term +-|k|*sig*2^exp; if
+  // the two terms' leading ones differ the larger decides the sign, if they are equal the terms
+  // overlap within CM + SB bits of the common leading one, so aligning the one with the larger
+  // exponent onto the other and adding in CM + SB + 2 bits is exact. No rounding anywhere.
+  // Returns {d < 0, d = 0}. A function called where it is used (21 times for the outcodes of an
+  // input triangle, once for the iterative clipper's vertex), in the clocked process.
+  localparam int TB = CM + SB;            // term magnitude bits
+  localparam int LB = EB + 2;             // leading-one exponents (signed)
+  localparam int SumBits = TB + 2;
+  localparam int ShBits = $clog2(TB) + 1;
+  function automatic logic [LB-1:0] msb_idx(input logic [TB-1:0] x);
+    msb_idx = '0;
+    for (int k = 0; k < TB; k++)
+      if (x[k]) msb_idx = LB'(k);
+  endfunction
+  function automatic logic [1:0] plane_side(input logic a_neg, input logic [CM-1:0] a_mag, input logic b_neg,
+                                            input logic [CM-1:0] b_mag, input logic wmin, input logic [VB-1:0] c,
+                                            input logic [VB-1:0] w);
+    logic [TB-1:0] m1, m2, m1a, m2a;
+    logic n1, n2, z1, z2, tn, tz, wn, wz;
+    logic signed [LB-1:0] e1, e2, l1, l2, wl, dexp;
+    logic [ShBits-1:0] sh;
+    logic signed [SumBits-1:0] s1, s2, sum;
+    m1 = TB'(a_mag) * TB'(c[VB-2 -: SB]);
+    m2 = TB'(b_mag) * TB'(w[VB-2 -: SB]);
+    n1 = a_neg ^ c[VB-1];
+    n2 = b_neg ^ w[VB-1];
+    z1 = ~|m1;
+    z2 = ~|m2;
+    e1 = LB'($signed(c[EB-1:0]));
+    e2 = LB'($signed(w[EB-1:0]));
+    l1 = e1 + $signed(msb_idx(m1));
+    l2 = e2 + $signed(msb_idx(m2));
+    dexp = e1 - e2;
+    sh = (dexp > 0) ? ShBits'(dexp) : ShBits'(-dexp);  // used only when < TB
+    m1a = m1;
+    m2a = m2;
+    if (dexp > 0) m1a = m1 << sh;
+    else m2a = m2 << sh;
+    s1 = n1 ? -$signed(SumBits'(m1a)) : $signed(SumBits'(m1a));
+    s2 = n2 ? -$signed(SumBits'(m2a)) : $signed(SumBits'(m2a));
+    sum = s1 + s2;
+    if (z1 && z2) begin
+      tn = 1'b0;
+      tz = 1'b1;
+    end else if (z1) begin
+      tn = n2;
+      tz = 1'b0;
+    end else if (z2) begin
+      tn = n1;
+      tz = 1'b0;
+    end else if (l1 != l2) begin
+      tn = (l1 > l2) ? n1 : n2;
+      tz = 1'b0;
+    end else begin
+      tn = sum[SumBits-1];
+      tz = ~|sum;
     end
-  end
-  logic trivial_reject, trivial_accept;
-  assign trivial_reject = |(oc[0] & oc[1] & oc[2]);
-  assign trivial_accept = ~|(oc[0] | oc[1] | oc[2]);
+    // w - 2^WMinExp: negative for w <= 0 or a leading one below; zero iff w is that power of two.
+    wl = e2 + $signed(msb_idx(TB'(w[VB-2 -: SB])));
+    wn = 1'b0;
+    wz = 1'b0;
+    if (~|w[VB-2 -: SB] || w[VB-1] || wl < LB'(fxr_rec_pkg::ClipWMinExp)) wn = 1'b1;
+    else if (wl == LB'(fxr_rec_pkg::ClipWMinExp)) wz = (w[VB-2 -: SB] & (w[VB-2 -: SB] - 1'b1)) == '0;
+    plane_side = wmin ? {wn, wz} : {tn, tz};
+  endfunction
+  // Plane p's side of vertex x.
+  function automatic logic [1:0] side_of(input logic [XB-1:0] x, input int p);
+    side_of = plane_side(pl_a_neg[p], pl_a_mag[p*CM +: CM], pl_b_neg[p], pl_b_mag[p*CM +: CM], pl_wmin[p],
+                         comp_of(x, pl_wmin[p] ? 3 : 32'(pl_comp[p*2 +: 2])), comp_of(x, 3));
+  endfunction
+  // Outcodes of the input triangle: bit v*NumPlanes + p set when vertex v is outside plane p.
+  function automatic logic [3*NumPlanes-1:0] outcodes(input logic [3*XB-1:0] t);
+    for (int tv = 0; tv < 3; tv++)
+      for (int tp = 0; tp < NumPlanes; tp++)
+        outcodes[tv*NumPlanes + tp] = |(side_of(t[(2-tv)*XB +: XB], tp) & 2'b10);
+  endfunction
 
   // ---- the iterative clipper's state -----------------------------------------------------------
   typedef enum logic [3:0] {
-    SIdle, SSide, SEdge, SDist0, SDist1, SDist2, SDist3, SQuot, SCompSet, SAcc, SNorm, SDiv, SRound, SEmit
+    SIdle, SSide, SPlane, SEdge, SDist0, SDist1, SDist2, SDist3, SQuot, SCompSet, SAcc, SNorm, SDiv, SRound, SEmit
   } state_e;
   state_e state;
 
-  logic [2*MaxV-1:0][XB-1:0] pbuf;      // two banks of MaxV vertices
+  logic [2*MaxV*XB-1:0] pbuf;           // two banks of MaxV vertices, slot k at [k*XB +: XB]
   logic bank;                            // the current polygon's bank
   logic [VIdxBits-1:0] n, m, i, vi, fi;  // vertices, next polygon's count, edge, side index, fan index
   logic [PlaneBits-1:0] plane;
@@ -211,14 +274,14 @@ module fxr_clip (
   assign j = (i + 1'b1 == n) ? '0 : i + 1'b1;
   // Slot k of a bank; indices beyond the buffer (never used) read slot 0.
   function automatic int slot(input logic b, input logic [VIdxBits-1:0] k);
-    slot = int'(b) * MaxV + (int'(k) < MaxV ? int'(k) : 0);
+    slot = 32'(b) * MaxV + (32'(k) < MaxV ? 32'(k) : 0);
   endfunction
-  assign cur_i = pbuf[slot(bank, i)];
-  assign cur_j = pbuf[slot(bank, j)];
-  assign cur_vi = pbuf[slot(bank, vi)];
-  assign cur_0 = pbuf[slot(bank, '0)];
-  assign cur_f1 = pbuf[slot(bank, fi)];
-  assign cur_f2 = pbuf[slot(bank, fi + 1'b1)];
+  assign cur_i = pbuf[slot(bank, i) * XB +: XB];
+  assign cur_j = pbuf[slot(bank, j) * XB +: XB];
+  assign cur_vi = pbuf[slot(bank, vi) * XB +: XB];
+  assign cur_0 = pbuf[slot(bank, '0) * XB +: XB];
+  assign cur_f1 = pbuf[slot(bank, fi) * XB +: XB];
+  assign cur_f2 = pbuf[slot(bank, fi + 1'b1) * XB +: XB];
   // Sides of the edge's ends; the edge crosses the plane when they are strictly opposite.
   logic ni, zi, nj, zj, crossing;
   assign ni = s_neg[slot(1'b0, i)];
@@ -227,17 +290,6 @@ module fxr_clip (
   assign zj = s_zero[slot(1'b0, j)];
   assign crossing = (!ni && !zi && nj) || (ni && !nj && !zj);
 
-  // Side of vertex vi against the current plane.
-  logic side_neg, side_zero;
-  logic [VB-1:0] sv_c, sv_w;
-  assign sv_c = comp_of(cur_vi, pl_wmin[plane] ? 3 : int'(pl_comp[plane]));
-  assign sv_w = comp_of(cur_vi, 3);
-  fxr_clip_side #(.CoefBits(CM), .SigBits(SB), .ExpBits(EB), .WMinExp(fxr_rec_pkg::ClipWMinExp)) u_side (
-    .a_neg_i(pl_a_neg[plane]), .a_mag_i(pl_a_mag[plane]), .b_neg_i(pl_b_neg[plane]), .b_mag_i(pl_b_mag[plane]),
-    .wmin_i(pl_wmin[plane]),
-    .c_neg_i(sv_c[VB-1]), .c_sig_i(sv_c[VB-2 -: SB]), .c_exp_i(sv_c[EB-1:0]),
-    .w_neg_i(sv_w[VB-1]), .w_sig_i(sv_w[VB-2 -: SB]), .w_exp_i(sv_w[EB-1:0]),
-    .neg_o(side_neg), .zero_o(side_zero));
 
   // ---- exact plane distance: one term k*value per clock, fixed point, lsb 2^LsbMin ------------
   localparam logic signed [DW-1:0] WMinConst = DW'(1) << (fxr_rec_pkg::ClipWMinExp - LsbMin);
@@ -261,11 +313,11 @@ module fxr_clip (
   always_comb begin
     if (state == SDist0 || state == SDist2) begin
       t_kneg = pl_a_neg[plane];
-      t_kmag = pl_a_mag[plane];
-      t_v = comp_of(dv, int'(pl_comp[plane]));
+      t_kmag = pl_a_mag[plane*CM +: CM];
+      t_v = comp_of(dv, 32'(pl_comp[plane*2 +: 2]));
     end else begin
       t_kneg = pl_b_neg[plane];
-      t_kmag = pl_b_mag[plane];
+      t_kmag = pl_b_mag[plane*CM +: CM];
       t_v = comp_of(dv, 3);
     end
   end
@@ -291,8 +343,8 @@ module fxr_clip (
   // (model: ClipVtx::attr_w()).
   function automatic logic [VB-1:0] comp_val(input logic [XB-1:0] x, input logic [CompBits-1:0] c);
     logic [VB-1:0] r;
-    r = x[(NumComp - 1 - int'(c)) * VB +: VB];
-    if (HasWa != 0 && int'(c) == 4 && ~|r[VB-2 -: SB]) r = x[(NumComp - 1 - 3) * VB +: VB];
+    r = x[(NumComp - 1 - 32'(c)) * VB +: VB];
+    if (HasWa != 0 && c == 4 && ~|r[VB-2 -: SB]) r = x[(NumComp - 1 - 3) * VB +: VB];
     comp_val = r;
   endfunction
   logic [VB-1:0] cs, ce;
@@ -381,60 +433,49 @@ module fxr_clip (
   assign emit_go = state == SEmit && !ovf && n >= VIdxBits'(3) && (!out_valid_o || out_ready_i);
   assign emit_last = fi + VIdxBits'(2) == n;
 
-  always_comb begin
-    done_o = 1'b0;
-    done_outcome_o = OB'(fxr_rec_pkg::ClipOutcomeAccepted);
-    done_created_o = created;
-    if (take) begin
-      done_created_o = '0;
-      if (!gb_valid) begin
-        done_o = 1'b1;
-        done_outcome_o = OB'(fxr_rec_pkg::ClipOutcomeRejectedViewport);
-      end else if (trivial_reject) begin
-        done_o = 1'b1;
-        done_outcome_o = OB'(fxr_rec_pkg::ClipOutcomeCulledOutside);
-      end else if (trivial_accept) begin
-        done_o = 1'b1;
-        done_outcome_o = OB'(fxr_rec_pkg::ClipOutcomeAccepted);
-      end
-    end else if (state == SEmit) begin
-      if (ovf) begin
-        done_o = 1'b1;
-        done_outcome_o = OB'(fxr_rec_pkg::ClipOutcomeRejectedOverflow);
-      end else if (n < VIdxBits'(3)) begin
-        done_o = 1'b1;
-        done_outcome_o = OB'(fxr_rec_pkg::ClipOutcomeClippedAway);
-      end else if (emit_go && emit_last) begin
-        done_o = 1'b1;
-        done_outcome_o = OB'(fxr_rec_pkg::ClipOutcomeClipped);
-      end
-    end
-  end
-
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       state <= SIdle;
       out_valid_o <= 1'b0;
+      done_o <= 1'b0;
+      done_outcome_o <= '0;
+      done_created_o <= '0;
     end else begin
+      done_o <= 1'b0;
       if (out_valid_o && out_ready_i) out_valid_o <= 1'b0;
       case (state)
         SIdle: begin
-          if (take && gb_valid && !trivial_reject) begin
-            if (trivial_accept) out_valid_o <= 1'b1;
-            else state <= SSide;
+          if (take) begin
+            // the fast path: the 21 exact plane sides of the input triangle
+            logic [3*NumPlanes-1:0] oc;
+            oc = outcodes(vin);
+            done_created_o <= '0;
+            if (!gb_valid) begin
+              done_o <= 1'b1;
+              done_outcome_o <= OB'(fxr_rec_pkg::ClipOutcomeRejectedViewport);
+            end else if (|(oc[0 +: NumPlanes] & oc[NumPlanes +: NumPlanes] & oc[2*NumPlanes +: NumPlanes])) begin
+              done_o <= 1'b1;
+              done_outcome_o <= OB'(fxr_rec_pkg::ClipOutcomeCulledOutside);
+            end else if (~|oc) begin
+              done_o <= 1'b1;
+              done_outcome_o <= OB'(fxr_rec_pkg::ClipOutcomeAccepted);
+              out_valid_o <= 1'b1;
+            end else begin
+              state <= SSide;
+            end
           end
         end
-        SSide: begin
-          if (vi + 1'b1 == n) begin
-            if (any_out || side_neg) state <= SEdge;
-            else if (int'(plane) == NumPlanes - 1) state <= SEmit;
-          end
+        SSide: if (vi + 1'b1 == n) state <= SPlane;
+        SPlane: begin
+          if (any_out) state <= SEdge;
+          else if (32'(plane) == NumPlanes - 1) state <= SEmit;
+          else state <= SSide;
         end
         SEdge: begin
           if (i == n) begin
-            if (m < VIdxBits'(3) || int'(plane) == NumPlanes - 1) state <= SEmit;
+            if (m < VIdxBits'(3) || 32'(plane) == NumPlanes - 1) state <= SEmit;
             else state <= SSide;
-          end else if (int'(m) + 2 <= MaxV && crossing) begin
+          end else if (32'(m) + 2 <= MaxV && crossing) begin
             state <= SDist0;
           end
         end
@@ -447,12 +488,24 @@ module fxr_clip (
         SAcc: if (pos == '0) state <= SNorm;
         SNorm: state <= (acc == '0) ? SRound : SDiv;
         SDiv: if (steps == StepBits'(1)) state <= SRound;
-        SRound: state <= (int'(comp) == NumComp - 1) ? SEdge : SCompSet;
+        SRound: state <= (32'(comp) == NumComp - 1) ? SEdge : SCompSet;
         SEmit: begin
-          if (ovf || n < VIdxBits'(3)) state <= SIdle;
-          else if (emit_go) begin
+          done_created_o <= created;
+          if (ovf) begin
+            done_o <= 1'b1;
+            done_outcome_o <= OB'(fxr_rec_pkg::ClipOutcomeRejectedOverflow);
+            state <= SIdle;
+          end else if (n < VIdxBits'(3)) begin
+            done_o <= 1'b1;
+            done_outcome_o <= OB'(fxr_rec_pkg::ClipOutcomeClippedAway);
+            state <= SIdle;
+          end else if (emit_go) begin
             out_valid_o <= 1'b1;
-            if (emit_last) state <= SIdle;
+            if (emit_last) begin
+              done_o <= 1'b1;
+              done_outcome_o <= OB'(fxr_rec_pkg::ClipOutcomeClipped);
+              state <= SIdle;
+            end
           end
         end
         default: state <= SIdle;
@@ -464,12 +517,12 @@ module fxr_clip (
     case (state)
       SIdle: begin
         if (take) begin
-          out_q <= {in_flat[InBits-1 -: PrimBits], vin[0], vin[1], vin[2]};
+          out_q <= {in_flat[InBits-1 -: PrimBits], vin};
           out_last_o <= 1'b1;
           prim_q <= in_flat[InBits-1 -: PrimBits];
-          pbuf[0] <= vin[0];
-          pbuf[1] <= vin[1];
-          pbuf[2] <= vin[2];
+          pbuf[0 +: XB] <= vin[2*XB +: XB];
+          pbuf[XB +: XB] <= vin[XB +: XB];
+          pbuf[2*XB +: XB] <= vin[0 +: XB];
           bank <= 1'b0;
           n <= VIdxBits'(3);
           plane <= '0;
@@ -480,19 +533,19 @@ module fxr_clip (
         end
       end
       SSide: begin
-        s_neg[slot(1'b0, vi)] <= side_neg;
-        s_zero[slot(1'b0, vi)] <= side_zero;
+        logic [1:0] sd;
+        sd = side_of(cur_vi, 32'(plane));
+        s_neg[slot(1'b0, vi)] <= sd[1];
+        s_zero[slot(1'b0, vi)] <= sd[0];
+        any_out <= any_out | sd[1];
+        vi <= (vi + 1'b1 == n) ? '0 : vi + 1'b1;
+      end
+      SPlane: begin  // a plane no vertex is outside of is skipped
         fi <= VIdxBits'(1);
-        if (vi + 1'b1 == n) begin
-          vi <= '0;
-          any_out <= 1'b0;
-          m <= '0;
-          i <= '0;
-          if (!(any_out || side_neg)) plane <= plane + 1'b1;
-        end else begin
-          vi <= vi + 1'b1;
-          any_out <= any_out | side_neg;
-        end
+        m <= '0;
+        i <= '0;
+        any_out <= 1'b0;
+        if (!any_out) plane <= plane + 1'b1;
       end
       SEdge: begin
         if (i == n) begin
@@ -500,12 +553,12 @@ module fxr_clip (
           bank <= ~bank;
           plane <= plane + 1'b1;
           fi <= VIdxBits'(1);
-        end else if (int'(m) + 2 > MaxV) begin
+        end else if (32'(m) + 2 > MaxV) begin
           ovf <= 1'b1;  // the model stops this plane's edge loop (cannot happen for float32 inputs)
           i <= n;
         end else begin
           if (!ni) begin
-            pbuf[slot(~bank, m)] <= cur_i;
+            pbuf[slot(~bank, m) * XB +: XB] <= cur_i;
             m <= m + 1'b1;
           end
           if (!crossing) i <= i + 1'b1;
@@ -522,7 +575,7 @@ module fxr_clip (
         logic signed [DW:0] q_raw;
         logic [QW-1:0] qm;
         logic [LzqBits-1:0] lzq;
-        q_raw = (DW + 1)'(d_s) - (DW + 1)'(d_e);
+        q_raw = DW1'(d_s) - DW1'(d_e);
         q_neg <= q_raw < 0;
         qm = QW'(q_raw < 0 ? -q_raw : q_raw);
         lzq = lzc_q(qm);
@@ -531,9 +584,9 @@ module fxr_clip (
         comp <= '0;
       end
       SCompSet: begin
-        te <= ce[VB-1] ? -(DW + 1)'(d_s) : (DW + 1)'(d_s);
-        ts <= cs[VB-1] ? (DW + 1)'(d_e) : -(DW + 1)'(d_e);
-        tsum <= (ce[VB-1] ? -(DW + 1)'(d_s) : (DW + 1)'(d_s)) + (cs[VB-1] ? (DW + 1)'(d_e) : -(DW + 1)'(d_e));
+        te <= ce[VB-1] ? -(DW1'(d_s)) : DW1'(d_s);
+        ts <= cs[VB-1] ? DW1'(d_e) : -(DW1'(d_e));
+        tsum <= (ce[VB-1] ? -(DW1'(d_s)) : DW1'(d_s)) + (cs[VB-1] ? DW1'(d_e) : -(DW1'(d_e)));
         sig_s <= cs[VB-2 -: SB];
         sig_e <= ce[VB-2 -: SB];
         off_s <= OffBits'(IB'(xs) - IB'(xmin));
@@ -541,7 +594,7 @@ module fxr_clip (
         emin <= xmin;
         pos <= PosCntBits'(SB - 1) + PosCntBits'(IB'(xs) + IB'(xe) - IB'(xmin) - IB'(xmin));
         acc <= '0;
-        bits_c <= BitsW'(int'(comp) == 3 ? WBits : PosBits);
+        bits_c <= BitsW'(comp == 3 ? WBits : PosBits);
       end
       SAcc: begin
         acc <= acc_step();
@@ -575,8 +628,8 @@ module fxr_clip (
         steps <= steps - 1'b1;
       end
       SRound: begin
-        pbuf[slot(~bank, m)][(NumComp - 1 - int'(comp)) * VB +: VB] <= rnd_val();
-        if (int'(comp) == NumComp - 1) begin
+        pbuf[slot(~bank, m) * XB + (NumComp - 1 - 32'(comp)) * VB +: VB] <= rnd_val();
+        if (32'(comp) == NumComp - 1) begin
           m <= m + 1'b1;
           created <= created + 1'b1;
           i <= i + 1'b1;

@@ -424,7 +424,7 @@ ClipPolygon clip_triangle(const GuardBand& gb, const ClipWidths& cw, const ClipV
       side[i] = plane_side(pl, poly.v[i]);
       any_out |= side[i] < 0;
     }
-    poly.rtl_cycles += poly.n;  // one side per clock
+    poly.rtl_cycles += poly.n + 1;  // one side per clock, one to decide
     if (!any_out) continue;  // no edge crosses: the pass would return its input
     int m = 0;
     poly.rtl_cycles += 1;  // the end of the pass

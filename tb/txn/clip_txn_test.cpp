@@ -74,13 +74,14 @@ struct Obs {
       d.viewport_h_i = fxr::tb::state_bits(st.viewport_h, wib + 1);
     };
     h.observe = [this](Vfxr_clip& d) {
-      if (d.in_valid_i && d.in_ready_o) take_cycle = cycle;
+      // done_o is registered: it pulses the clock after the decision (the stage's last busy clock)
       if (d.done_o) {
         const int o = d.done_outcome_o;
         if (o < 6) ++count[o];
         created += d.done_created_o;
-        if (o == (int)ClipOutcome::Clipped || o == (int)ClipOutcome::ClippedAway) clip_cycles.push_back(cycle - take_cycle + 1);
+        if (o == (int)ClipOutcome::Clipped || o == (int)ClipOutcome::ClippedAway) clip_cycles.push_back(cycle - take_cycle);
       }
+      if (d.in_valid_i && d.in_ready_o) take_cycle = cycle;
       ++cycle;
     };
     return h;
