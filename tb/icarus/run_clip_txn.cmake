@@ -1,0 +1,45 @@
+# ctest driver of tb/icarus/clip_txn_tb.sv (fxr_clip_core on a transaction dump's clip.in / clip.out)
+# under Icarus:
+#   cmake -DIVERILOG=… -DVVP=… -DTB=tb/icarus/clip_txn_tb.sv -DARGS="pkg.sv;rec_pkg.sv;rtl/fxr_clip_core.sv"
+#         -DDUMP=/abs/dump/folder -DWORK=<build dir> [-DSEED=n] [-DCORRUPT=row] -P run_clip_txn.cmake
+# Reads the row counts (clip.in.json / clip.out.json) and the viewport (scene.json draw_state),
+# compiles with `iverilog -g2012`, runs vvp and passes when the bench prints PASSED and no
+# MISMATCH; with -DCORRUPT=N when it prints FAILED and exactly one MISMATCH, at row N.
+foreach(v IVERILOG VVP TB ARGS DUMP WORK)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "run_clip_txn.cmake: -D${v}=… missing")
+  endif()
+endforeach()
+if(NOT DEFINED SEED)
+  set(SEED 1)
+endif()
+file(READ "${DUMP}/clip.in.json" jin)
+file(READ "${DUMP}/clip.out.json" jout)
+file(READ "${DUMP}/scene.json" jscene)
+string(JSON nin GET "${jin}" count)
+string(JSON nout GET "${jout}" count)
+foreach(f x y w h)
+  string(JSON v${f} GET "${jscene}" draw_state viewport_${f})
+endforeach()
+file(MAKE_DIRECTORY "${WORK}")
+execute_process(COMMAND ${IVERILOG} -g2012 -s clip_txn_tb -o "${WORK}/clip_txn_tb.vvp" ${ARGS} "${TB}"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "iverilog failed:\n${out}${err}")
+endif()
+set(plus +in=${DUMP}/clip.in.hex +out=${DUMP}/clip.out.hex +nin=${nin} +nout=${nout} +seed=${SEED}
+         +vx=${vx} +vy=${vy} +vw=${vw} +vh=${vh})
+if(DEFINED CORRUPT)
+  list(APPEND plus +corrupt=${CORRUPT})
+endif()
+execute_process(COMMAND ${VVP} -n "${WORK}/clip_txn_tb.vvp" ${plus} RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
+message("${log}${err}")
+string(REGEX MATCHALL "MISMATCH[^\n]*" mism "${log}")
+list(LENGTH mism nmism)
+if(DEFINED CORRUPT)
+  if(NOT log MATCHES "\nFAILED" OR NOT nmism EQUAL 1 OR NOT log MATCHES "MISMATCH clip row=${CORRUPT} ")
+    message(FATAL_ERROR "the corrupted row ${CORRUPT} was not reported as exactly one mismatch")
+  endif()
+elseif(NOT log MATCHES "\nPASSED" OR nmism GREATER 0)
+  message(FATAL_ERROR "clip_txn_tb failed")
+endif()
