@@ -133,6 +133,7 @@ struct TxnOptions {
   unsigned in_gap_pct = 25, out_stall_pct = 25;
   uint64_t timeout_cycles = 200000;  // cycles without an output while one is owed: lost
   uint64_t reset_cycles = 4, drain_cycles = 200;
+  uint64_t input_delay_cycles = 0;  // no input offered in the first cycles after reset (a register block's writes)
   uint64_t wave_before = 200, wave_after = 20;
   bool write_wave = true, print = true;
   size_t max_print = 20;
@@ -249,7 +250,7 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
   VecRow got(v.out.lay.size());
   const auto t0 = std::chrono::steady_clock::now();
   for (;;) {
-    if (next_in < v.in.rows && !offering) {
+    if (next_in < v.in.rows && !offering && cycle >= o.reset_cycles + o.input_delay_cycles) {
       offering = !chance(o.in_gap_pct);
       if (offering) {
         const VecRow row = v.in.row(next_in);

@@ -46,9 +46,12 @@ inline const char* const kStatNames[kStats] = {"tri_in",    "tri_drawn", "tri_ze
                                                "tri_range", "spans",     "frag_generated", "frag_depth_pass", "frag_depth_fail"};
 using Stats = std::array<uint64_t, kStats>;
 
-// The back end's stage boundaries, in pipeline order: the records each stage emits.
-constexpr int kTaps = 5;
-inline const char* const kTapNames[kTaps] = {"setup", "traverse", "interp", "depth", "divide"};
+// The unit's stage boundaries, in pipeline order: the records each stage emits. The back end's
+// are kTapSetup on; the geometry's (stages 1–4) are recorded when model_draw is asked to.
+constexpr int kTaps = 9;
+inline const char* const kTapNames[kTaps] = {"convert", "clip",   "recip", "viewport", "setup",
+                                             "traverse", "interp", "depth", "divide"};
+constexpr int kTapSetup = 4;
 
 // The rows of one boundary: (seq, record fields), seq the record's index in the stream.
 struct TapStream {
@@ -69,12 +72,15 @@ constexpr size_t kTapHeaderFields = 1;
 struct BackendTaps {
   RecordShape shape;
   SceneStageVectors v;
+  SceneStageVectors u;  // the whole unit: convert.in (InputTriangle) → divide.out, txn = the primitive
+  uint64_t u_n_out = 0;
   std::vector<SetupTriangle> tris;
   std::array<TapStream, kTaps> taps;
   uint64_t spans = 0;
   uint64_t n_out = 0;
   VecRow in_row, out_row, tap_row;
   bool out_pending = false;
+  bool geometry_taps = false;  // record stages 1–4's outputs too
 
   template <class R>
   void tap_layout(int k) {
@@ -97,11 +103,23 @@ struct BackendTaps {
     v.out = SceneStageFile{name + ":backend.out", VecLayout(fo), kTxnOutHeaderFields, 0, {}};
     in_row.assign(v.in.lay.size(), 0);
     out_row.assign(v.out.lay.size(), 0);
-    tap_layout<TriangleEquations>(0);
-    tap_layout<Span>(1);
-    tap_layout<PlaneSample>(2);
-    tap_layout<PlaneSample>(3);
-    tap_layout<Fragment>(4);
+    std::vector<VecField> ui = {{"txn", VecDir::In, kTxnIdBits, false, "transaction id"},
+                                {"n_out", VecDir::In, kTxnCountBits, false, "fragments of this primitive"}};
+    append_record_fields<InputTriangle>(shape, VecDir::In, ui);
+    u.stage = "unit";
+    u.cfg = cfg;
+    u.num_varyings = varyings;
+    u.in = SceneStageFile{name + ":convert.in", VecLayout(ui), kTxnInHeaderFields, 0, {}};
+    u.out = SceneStageFile{name + ":unit.out", VecLayout(fo), kTxnOutHeaderFields, 0, {}};
+    tap_layout<ExactTriangle>(0);
+    tap_layout<ClippedTriangle>(1);
+    tap_layout<RecipTriangle>(2);
+    tap_layout<SetupTriangle>(3);
+    tap_layout<TriangleEquations>(4);
+    tap_layout<Span>(5);
+    tap_layout<PlaneSample>(6);
+    tap_layout<PlaneSample>(7);
+    tap_layout<Fragment>(8);
   }
   template <class R>
   void tap(int k, const R& r) {
@@ -125,6 +143,15 @@ struct BackendTaps {
   }
   template <class S>
   void in(const typename S::In& r) {
+    if constexpr (std::is_same_v<S, ConvertStage>) {
+      if (u.in.rows) u.in.data[(u.in.rows - 1) * u.in.lay.size() + 1] = u_n_out;
+      VecRow row(u.in.lay.size(), 0);
+      row[0] = u.in.rows;
+      pack_record(r, shape, row, kTxnInHeaderFields, u.in.path);
+      u.in.data.insert(u.in.data.end(), row.begin(), row.end());
+      ++u.in.rows;
+      u_n_out = 0;
+    }
     if constexpr (std::is_same_v<S, SetupStage>) {
       flush_out(true);
       if (v.in.rows) flush_in();
@@ -139,25 +166,43 @@ struct BackendTaps {
   }
   template <class S>
   void out(const typename S::Out& r) {
-    if constexpr (std::is_same_v<S, SetupStage>) tap(0, r);
+    if constexpr (std::is_same_v<S, ConvertStage>) {
+      if (geometry_taps) tap(0, r);
+    }
+    if constexpr (std::is_same_v<S, ClipStage>) {
+      if (geometry_taps) tap(1, r);
+    }
+    if constexpr (std::is_same_v<S, RecipStage>) {
+      if (geometry_taps) tap(2, r);
+    }
+    if constexpr (std::is_same_v<S, ViewportStage>) {
+      if (geometry_taps) tap(3, r);
+    }
+    if constexpr (std::is_same_v<S, SetupStage>) tap(4, r);
     if constexpr (std::is_same_v<S, TraverseStage>) {
       ++spans;
-      tap(1, r);
+      tap(5, r);
     }
-    if constexpr (std::is_same_v<S, InterpStage>) tap(2, r);
-    if constexpr (std::is_same_v<S, DepthStage>) tap(3, r);
+    if constexpr (std::is_same_v<S, InterpStage>) tap(6, r);
+    if constexpr (std::is_same_v<S, DepthStage>) tap(7, r);
     if constexpr (std::is_same_v<S, DivideStage>) {
-      tap(4, r);
+      tap(8, r);
       flush_out(false);
       out_row[0] = v.in.rows - 1;
       out_row[1] = n_out++;
       pack_record(r, shape, out_row, kTxnOutHeaderFields, v.out.path);
       out_pending = true;
+      VecRow row = out_row;  // `last` is not compared (the unit has no out_last_o)
+      row[0] = u.in.rows - 1;
+      row[1] = u_n_out++;
+      u.out.data.insert(u.out.data.end(), row.begin(), row.end());
+      ++u.out.rows;
     }
   }
   void finish() {
     flush_out(true);
     if (v.in.rows) flush_in();
+    if (u.in.rows) u.in.data[(u.in.rows - 1) * u.in.lay.size() + 1] = u_n_out;
   }
 };
 
@@ -169,6 +214,7 @@ struct Draw {
   std::string name;
   DrawState st;
   SceneStageVectors v;
+  SceneStageVectors u;  // the whole unit's streams (BackendTaps::u)
   std::array<TapStream, kTaps> taps;
   std::vector<uint32_t> depth;  // the model's final buffer
   uint32_t clear = 0;           // the buffer's value before the draw (both sides)
@@ -181,9 +227,10 @@ struct Draw {
 // buffer starts at `clear` (the unit's clear value, the maximum code, when negative): the chain of
 // run_raster_unit_to on a buffer filled after frame_begin.
 inline Draw model_draw(const std::string& name, const Config& cfg, DrawState st, const std::vector<ClipTriangle>& tris,
-                       int64_t clear = -1) {
+                       int64_t clear = -1, bool geometry_taps = false) {
   st.num_varyings = kRtlVaryings;
   BackendTaps taps(cfg, kRtlVaryings, name);
+  taps.geometry_taps = geometry_taps;
   FrameOutput f;
   NullSink sink;  // varyings computed (the planes of every varying), fragments not kept
   frame_begin(cfg, st, f);
@@ -199,6 +246,7 @@ inline Draw model_draw(const std::string& name, const Config& cfg, DrawState st,
   d.name = name;
   d.st = st;
   d.v = std::move(taps.v);
+  d.u = std::move(taps.u);
   d.taps = std::move(taps.taps);
   d.depth = std::move(f.depth);
   d.fragments = d.v.out.rows;

@@ -30,22 +30,39 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "Vfxr_raster_backend__cosim.h"
-#include "Vfxr_raster_backend__cosim___024root.h"
 #include "backend/backend_draw.hpp"
 #include "frontend/scene.hpp"
+#ifdef FXR_COSIM_UNIT
+#include "Vfxr_raster_unit__cosim.h"
+#include "Vfxr_raster_unit__cosim___024root.h"
+#include "unit/unit_run.hpp"
+#else
+#include "Vfxr_raster_backend__cosim.h"
+#include "Vfxr_raster_backend__cosim___024root.h"
+#endif
 
 namespace {
 
+#ifdef FXR_COSIM_UNIT
+// The whole unit (rtl/fxr_raster_unit.sv): every boundary from stage 1's output on.
+using Dut = Vfxr_raster_unit__cosim;
+constexpr int kFirstTap = 0;
+constexpr const char* kDutText = "fxr_raster_unit (stages 1-9), driven with the model's convert.in records";
+#define FXR_BE(sig) (d.rootp->fxr_raster_unit__DOT__u_backend__DOT__##sig)
+#define FXR_UNIT(sig) (d.rootp->fxr_raster_unit__DOT__##sig)
+#else
+// The back end alone (rtl/fxr_raster_backend.sv), until stages 2 and 4 are in RTL.
 using Dut = Vfxr_raster_backend__cosim;
+constexpr int kFirstTap = fxr::tb::kTapSetup;
+constexpr const char* kDutText = "fxr_raster_backend (stages 5-9), driven with the model's setup.in records";
+#define FXR_BE(sig) (d.rootp->fxr_raster_backend__DOT__##sig)
+#endif
 using fxr::VecRow;
 using fxr::tb::Draw;
 using fxr::tb::kTapNames;
 using fxr::tb::kTaps;
 using fxr::tb::RecordBinding;
 
-// The back end's internal signals at each boundary (names in rtl/fxr_raster_backend.sv).
-#define FXR_BE(sig) (d.rootp->fxr_raster_backend__DOT__##sig)
 
 struct TapMismatch {
   int tap = 0;
@@ -71,7 +88,7 @@ struct TapChecker {
   VecRow got;
 
   explicit TapChecker(const Draw& d) : draw(&d) {
-    for (int k = 0; k < kTaps; ++k) bind[(size_t)k] = RecordBinding(d.taps[(size_t)k].lay, fxr::tb::kTapHeaderFields);
+    for (int k = kFirstTap; k < kTaps; ++k) bind[(size_t)k] = RecordBinding(d.taps[(size_t)k].lay, fxr::tb::kTapHeaderFields);
   }
   void reset() {
     st = {};
@@ -111,11 +128,17 @@ struct TapChecker {
     }
   }
   void observe(Dut& d) {
-    check(0, FXR_BE(su_valid), FXR_BE(su_ready), FXR_BE(su_out));
-    check(1, FXR_BE(ip_in_valid), FXR_BE(ip_in_ready), FXR_BE(ip_in));
-    check(2, FXR_BE(ip_out_valid), FXR_BE(ip_out_ready), FXR_BE(ip_out));
-    check(3, FXR_BE(dp_out_valid), FXR_BE(dp_out_ready), FXR_BE(dp_out));
-    check(4, d.out_valid_o, d.out_ready_i, d.out_o);
+#ifdef FXR_COSIM_UNIT
+    check(0, FXR_UNIT(s1_valid), FXR_UNIT(s1_ready), FXR_UNIT(s1_out));
+    check(1, FXR_UNIT(s2_valid), FXR_UNIT(s2_ready), FXR_UNIT(s2_out));
+    check(2, FXR_UNIT(s3_valid), FXR_UNIT(s3_ready), FXR_UNIT(s3_out));
+    check(3, FXR_UNIT(s4_valid), FXR_UNIT(s4_ready), FXR_UNIT(s4_out));
+#endif
+    check(4, FXR_BE(su_valid), FXR_BE(su_ready), FXR_BE(su_out));
+    check(5, FXR_BE(ip_in_valid), FXR_BE(ip_in_ready), FXR_BE(ip_in));
+    check(6, FXR_BE(ip_out_valid), FXR_BE(ip_out_ready), FXR_BE(ip_out));
+    check(7, FXR_BE(dp_out_valid), FXR_BE(dp_out_ready), FXR_BE(dp_out));
+    check(8, d.out_valid_o, d.out_ready_i, d.out_o);
     ++cycle;
   }
   // Records the model has and the RTL never produced.
@@ -167,7 +190,7 @@ int run(const Options& o) {
   }
   if (sc.tris.empty()) throw BadInput(sc.source + ": the scene has no triangles (line segments are not in the RTL yet)");
   const auto tm0 = std::chrono::steady_clock::now();
-  Draw d = fxr::tb::model_draw(sc.name, sc.config, sc.state, sc.tris);
+  Draw d = fxr::tb::model_draw(sc.name, sc.config, sc.state, sc.tris, -1, kFirstTap == 0);
   const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - tm0).count();
 
   // ---- test hooks: a corrupted model value or RTL input ----------------------------------
@@ -176,10 +199,13 @@ int run(const Options& o) {
     const size_t colon = o.inject_model.find(':');
     const std::string stage = o.inject_model.substr(0, colon);
     int k = -1;
-    for (int i = 0; i < kTaps; ++i)
+    std::string names;
+    for (int i = kFirstTap; i < kTaps; ++i) {
       if (stage == kTapNames[i]) k = i;
+      names += std::string(i > kFirstTap ? ", " : "") + kTapNames[i];
+    }
     if (k < 0 || colon == std::string::npos)
-      throw BadInput("--inject-model " + o.inject_model + ": expected STAGE:ROW, STAGE one of setup, traverse, interp, depth, divide");
+      throw BadInput("--inject-model " + o.inject_model + ": expected STAGE:ROW, STAGE one of " + names);
     uint64_t row = 0;
     try {
       row = std::stoull(o.inject_model.substr(colon + 1));
@@ -191,18 +217,23 @@ int run(const Options& o) {
     const size_t f = t.lay.size() - 1;  // the record's last field, lsb flipped
     t.data[row * t.lay.size() + f] ^= 1;
     if (k == kTaps - 1) {  // the divider's records are also the fragment stream
-      const size_t n = d.v.out.lay.size();
-      d.v.out.data[row * n + n - 1] ^= 1;
+      for (fxr::SceneStageVectors* sv : {&d.v, &d.u}) {
+        const size_t n = sv->out.lay.size();
+        sv->out.data[row * n + n - 1] ^= 1;
+      }
     }
     injected = "model " + stage + " record " + std::to_string(row) + ", field '" + t.lay[f].name + "' lsb flipped";
   }
-  fxr::SceneStageVectors drive = d.v;
+  // The DUT's streams: the unit's from convert.in, the back end's from setup.in.
+  fxr::SceneStageVectors drive = kFirstTap == 0 ? d.u : d.v;
+  const std::string in_name = kFirstTap == 0 ? "convert.in" : "setup.in";
   if (o.inject_rtl >= 0) {
     if ((uint64_t)o.inject_rtl >= drive.in.rows)
-      throw BadInput("--inject-rtl " + std::to_string(o.inject_rtl) + ": the draw has " + std::to_string(drive.in.rows) + " setup inputs");
+      throw BadInput("--inject-rtl " + std::to_string(o.inject_rtl) + ": the draw has " + std::to_string(drive.in.rows) + " " +
+                     in_name + " rows");
     const size_t f = drive.in.header + 1;  // the field after prim
     drive.in.data[(size_t)o.inject_rtl * drive.in.lay.size() + f] ^= 1;
-    injected = "RTL input setup.in row " + std::to_string(o.inject_rtl) + ", field '" + drive.in.lay[f].name + "' lsb flipped";
+    injected = "RTL input " + in_name + " row " + std::to_string(o.inject_rtl) + ", field '" + drive.in.lay[f].name + "' lsb flipped";
   }
 
   // ---- the RTL run --------------------------------------------------------------------------
@@ -221,20 +252,31 @@ int run(const Options& o) {
     return fxr::tb::detail::txn_simulate<Dut>(v, nullptr, q, o.wave, 0, UINT64_MAX, wave_all, &hook);
   };
   const auto tr0 = std::chrono::steady_clock::now();
+#ifdef FXR_COSIM_UNIT
+  fxr::tb::UnitRun ur = fxr::tb::run_unit<Dut>(d, drive, h, ro);
+  fxr::tb::RtlRun& k = ur.k;
+  const fxr::tb::GeomStats geom_want = fxr::tb::model_geom_stats(d);
+  auto rerun = [&](const fxr::tb::RtlRunOptions<Dut>& r) { (void)fxr::tb::run_unit<Dut>(d, drive, h, r); };
+#else
   fxr::tb::RtlRun k = fxr::tb::run_rtl<Dut>(d, drive, h, ro);
+  auto rerun = [&](const fxr::tb::RtlRunOptions<Dut>& r) { (void)fxr::tb::run_rtl<Dut>(d, drive, h, r); };
+#endif
   const double rtl_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - tr0).count();
   // The harness compared the fragment stream with the model's divide.out (d.v.out: the expected
   // stream is the model's, drive.in the possibly corrupted input).
 
   // ---- verdict ---------------------------------------------------------------------------------
   int diverge = -1;
-  for (int t = 0; t < kTaps && diverge < 0; ++t)
+  for (int t = kFirstTap; t < kTaps && diverge < 0; ++t)
     if (!taps.equal(t)) diverge = t;
   uint64_t depth_diff = 0;
   for (size_t i = 0; i < d.depth.size() && i < k.depth.size(); ++i) depth_diff += d.depth[i] != k.depth[i];
   depth_diff += d.depth.size() > k.depth.size() ? d.depth.size() - k.depth.size() : k.depth.size() - d.depth.size();
   uint64_t counters_diff = 0;
   for (int i = 0; i < fxr::tb::kStats; ++i) counters_diff += d.want[(size_t)i] != k.stats[(size_t)i];
+#ifdef FXR_COSIM_UNIT
+  for (int i = 0; i < fxr::tb::kGeomStats; ++i) counters_diff += geom_want[(size_t)i] != ur.geom[(size_t)i];
+#endif
   const bool match = k.r.passed() && diverge < 0 && depth_diff == 0 && counters_diff == 0 && k.bad_addresses == 0;
 
   // The first mismatch in time (a tap's or the fragment stream's) centres the waveform window.
@@ -254,11 +296,19 @@ int run(const Options& o) {
                                                 first_cycle + after, fst, &hook);
     };
     TapChecker keep = taps;
-    (void)fxr::tb::run_rtl<Dut>(d, drive, h, rw);
+#ifdef FXR_COSIM_UNIT
+    const fxr::tb::UnitRun keep_u = ur;
+    rerun(rw);
+    ur = keep_u;
+#else
+    const fxr::tb::RtlRun keep_k = k;
+    rerun(rw);
+    k = keep_k;
+#endif
     taps = keep;  // the replay stops after the window: the full run's figures stay
     std::ofstream csv(fs::path(o.out) / "mismatches.csv");
     csv << "boundary,seq,cycle,field,rtl,model\n";
-    for (int t = 0; t < kTaps; ++t)
+    for (int t = kFirstTap; t < kTaps; ++t)
       for (const TapMismatch& m : taps.st[(size_t)t].first)
         csv << kTapNames[t] << "," << m.seq << "," << m.cycle << "," << m.field << "," << m.got << "," << m.exp << "\n";
     for (const fxr::tb::TxnMismatch& m : k.r.mismatches) {
@@ -275,12 +325,12 @@ int run(const Options& o) {
   j["scene"] = {{"name", sc.name}, {"source", sc.source}, {"viewport", {sc.state.viewport_w, sc.state.viewport_h}},
                 {"triangles", sc.tris.size()}, {"line_segments_not_simulated", sc.lines.size()},
                 {"varyings_scene", sc.state.num_varyings}, {"varyings_rtl", fxr::tb::kRtlVaryings}};
-  j["dut"] = "fxr_raster_backend (stages 5-9), driven with the model's setup.in records";
+  j["dut"] = kDutText;
   j["handshake"] = {{"seed", o.seed}, {"input_gap_pct", o.gaps}, {"output_stall_pct", o.stalls},
                     {"memory_latency_max", h.lat_max}};
   if (!injected.empty()) j["injected"] = injected;
   nlohmann::json jt = nlohmann::json::array();
-  for (int t = 0; t < kTaps; ++t) {
+  for (int t = kFirstTap; t < kTaps; ++t) {
     const TapState& s = taps.st[(size_t)t];
     nlohmann::json e{{"boundary", std::string(kTapNames[t]) + ".out"}, {"model_records", d.taps[(size_t)t].rows},
                      {"rtl_records", s.n}, {"matched", s.matched}, {"mismatched", s.mismatched},
@@ -298,6 +348,10 @@ int run(const Options& o) {
   nlohmann::json jc = nlohmann::json::object();
   for (int i = 0; i < fxr::tb::kStats; ++i)
     jc[fxr::tb::kStatNames[i]] = {{"model", d.want[(size_t)i]}, {"rtl", k.stats[(size_t)i]}};
+#ifdef FXR_COSIM_UNIT
+  for (int i = 0; i < fxr::tb::kGeomStats; ++i)
+    jc[fxr::tb::kGeomStatNames[i]] = {{"model", geom_want[(size_t)i]}, {"rtl", ur.geom[(size_t)i]}};
+#endif
   j["counters"] = jc;
   j["counters_mismatched"] = counters_diff;
   j["depth_buffer_words_differing"] = depth_diff;
@@ -320,8 +374,7 @@ int run(const Options& o) {
   md << "- scene: `" << sc.source << "`, viewport " << sc.state.viewport_w << " x " << sc.state.viewport_h << ", "
      << sc.tris.size() << " triangles";
   if (!sc.lines.empty()) md << " (" << sc.lines.size() << " line segments not simulated: no line path in the RTL yet)";
-  md << "\n- DUT: `fxr_raster_backend` (stages 5–9), driven with the model's setup.in records ("
-     << d.v.in.rows << " snapped triangles)\n";
+  md << "\n- DUT: `" << kDutText << "` (" << drive.in.rows << " records)\n";
   if (sc.state.num_varyings != fxr::tb::kRtlVaryings)
     md << "- varyings: the scene has " << sc.state.num_varyings << ", the RTL " << fxr::tb::kRtlVaryings
        << " (both sides run with " << fxr::tb::kRtlVaryings << ")\n";
@@ -329,7 +382,7 @@ int run(const Options& o) {
      << " %, depth-memory latency 1.." << h.lat_max << "\n";
   if (!injected.empty()) md << "- injected (test hook): " << injected << "\n";
   md << "\n## Stage boundaries\n\n| boundary | model | RTL | matched | mismatched | missing | first mismatch |\n|---|---|---|---|---|---|---|\n";
-  for (int t = 0; t < kTaps; ++t) {
+  for (int t = kFirstTap; t < kTaps; ++t) {
     const TapState& s = taps.st[(size_t)t];
     md << "| " << kTapNames[t] << ".out | " << d.taps[(size_t)t].rows << " | " << s.n << " | " << s.matched << " | "
        << s.mismatched << " | " << taps.missing(t) << " | ";
@@ -345,6 +398,11 @@ int run(const Options& o) {
   for (int i = 0; i < fxr::tb::kStats; ++i)
     md << "| " << fxr::tb::kStatNames[i] << " | " << d.want[(size_t)i] << " | " << k.stats[(size_t)i]
        << (d.want[(size_t)i] != k.stats[(size_t)i] ? " **≠**" : "") << " |\n";
+#ifdef FXR_COSIM_UNIT
+  for (int i = 0; i < fxr::tb::kGeomStats; ++i)
+    md << "| " << fxr::tb::kGeomStatNames[i] << " | " << geom_want[(size_t)i] << " | " << ur.geom[(size_t)i]
+       << (geom_want[(size_t)i] != ur.geom[(size_t)i] ? " **≠**" : "") << " |\n";
+#endif
   md << "\nDepth buffer: " << depth_diff << " words differ.\n";
   md << "\n## Performance\n\n";
   md << "- cycles, first input to last output: " << cyc << " (" << k.r.cycles << " simulated)\n";
@@ -353,7 +411,7 @@ int run(const Options& o) {
   md << "Per-stage utilisation, from the handshake at each stage's output (busy: a record leaves; stalled: "
         "one waits for the next stage; starved: none ready), over the "
      << k.r.cycles << " simulated clocks:\n\n| stage | busy | stalled | starved |\n|---|---|---|---|\n";
-  for (int t = 0; t < kTaps; ++t) {
+  for (int t = kFirstTap; t < kTaps; ++t) {
     const TapState& s = taps.st[(size_t)t];
     const uint64_t all = s.busy + s.stalled + s.starved;
     md << "| " << kTapNames[t] << " | " << fmt("%.1f %%", pct(s.busy, all)) << " | " << fmt("%.1f %%", pct(s.stalled, all))
@@ -364,7 +422,7 @@ int run(const Options& o) {
   md << ".\n";
   if (!match) {
     md << "\n## First mismatches\n\n";
-    for (int t = 0; t < kTaps; ++t)
+    for (int t = kFirstTap; t < kTaps; ++t)
       for (const TapMismatch& m : taps.st[(size_t)t].first)
         md << "- " << kTapNames[t] << ".out record " << m.seq << ", cycle " << m.cycle << ": `" << m.field << "` RTL "
            << m.got << ", model " << m.exp << "\n";

@@ -1,0 +1,119 @@
+// tb/unit/unit_run.hpp — a whole draw through rtl/fxr_raster_unit.sv (Verilator): the model's
+// convert.in stream of the draw (tb/backend/backend_draw.hpp, Draw::u) driven into the unit after
+// the draw state is written through its register block, the depth buffer behind its memory port
+// (tb/depth_mem.hpp), random gaps, back-pressure and memory latency; the fragment stream compared
+// in order by the transaction harness; the counter registers read. docs/rtl.md, "fxr_raster_unit".
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+
+#include "backend/backend_draw.hpp"
+
+namespace fxr::tb {
+
+// fxr_raster_unit's register block (rtl/fxr_raster_unit.sv): address → value of a draw state.
+constexpr int kUnitRegs = 15;
+inline std::array<int64_t, kUnitRegs> unit_registers(const DrawState& st, int num_varyings) {
+  return {st.viewport_x, st.viewport_y, st.viewport_w,  st.viewport_h,     st.scissor_x,
+          st.scissor_y,  st.scissor_w,  st.scissor_h,   (int64_t)st.cull,  st.front_ccw,
+          (int64_t)st.depth_func, st.depth_test, st.depth_write, (int64_t)st.interp, num_varyings};
+}
+
+// The geometry counters (stat_*_o of stages 1–4) and their RasterStats values.
+constexpr int kGeomStats = 10;
+inline const char* const kGeomStatNames[kGeomStats] = {
+    "prims_in", "prims_rejected_nan", "prims_rejected_inf", "prims_varying_nonfinite", "prims_trivial_accept",
+    "prims_clipped", "clip_vertices_created", "clip_triangles_out", "prims_culled_outside", "geom_rejected_range"};
+using GeomStats = std::array<uint64_t, kGeomStats>;
+// The model's: RasterStats of the draw; geometry's range rejections are the primitives rejected
+// for range less those rejected by setup (per primitive: a single-piece primitive's setup outcome).
+inline GeomStats model_geom_stats(const Draw& d) {
+  const RasterStats& s = d.stats;
+  return {s.prims_in, s.prims_rejected_nan, s.prims_rejected_inf, s.prims_varying_nonfinite, s.prims_trivial_accept,
+          s.prims_clipped, s.clip_vertices_created, s.clip_triangles_out, s.prims_culled_outside,
+          s.prims_rejected_range - d.want[5]};
+}
+
+constexpr int kUnitStages = 5;
+inline const char* const kUnitStageNames[kUnitStages] = {"input", "clip", "recip", "viewport", "backend"};
+
+struct UnitRun {
+  RtlRun k;
+  GeomStats geom{};
+  std::array<std::array<uint64_t, 3>, kUnitStages> util{};  // busy, stalled, starved
+};
+
+template <class T>
+uint64_t flat_word(const T& p, int i, int bits) {
+  uint64_t v = 0;
+  for (int b = 0; b < bits; ++b)
+    if ((port_word(p, (i * bits + b) / 32) >> ((i * bits + b) % 32)) & 1) v |= uint64_t(1) << b;
+  return v;
+}
+
+template <class Dut>
+UnitRun run_unit(const Draw& d, const SceneStageVectors& v, const Handshake& h, const RtlRunOptions<Dut>& ro,
+                 int stat_bits = 32) {
+  UnitRun out;
+  DepthMemOptions mo;
+  mo.seed = 1000 + h.seed;
+  mo.min_latency = h.lat_min;
+  mo.max_latency = h.lat_max;
+  mo.req_stall_pct = h.req_stall;
+  mo.wr_stall_pct = h.req_stall;
+  DepthMem mem((size_t)d.st.viewport_w * (size_t)d.st.viewport_h, d.clear, mo);
+  const std::array<int64_t, kUnitRegs> regs = unit_registers(d.st, d.st.num_varyings);
+  const uint64_t reg_mask = (uint64_t(1) << (v.cfg.raster.window_int_bits + 1)) - 1;
+  uint64_t cycle = 0;
+  TxnHook<Dut> hook;
+  hook.reset = [&] {
+    mem.reset();
+    out.k.stats = Stats{};
+    out.k.perf = Perf{};
+    out.geom = GeomStats{};
+    cycle = 0;
+    if (ro.reset) ro.reset();
+  };
+  hook.drive = [&](Dut& dut) {
+    // One register per clock after reset, then none (the harness offers no input meanwhile).
+    dut.reg_we_i = dut.rst_ni && cycle < (uint64_t)kUnitRegs;
+    dut.reg_addr_i = cycle < (uint64_t)kUnitRegs ? (uint8_t)cycle : 0;
+    dut.reg_wdata_i = cycle < (uint64_t)kUnitRegs ? (uint32_t)((uint64_t)regs[cycle] & reg_mask) : 0;
+    mem.drive(dut);
+  };
+  hook.observe = [&](Dut& dut) {
+    ++cycle;
+    mem.observe(dut);
+    out.k.stats = {u64(dut.stat_tri_in_o),       u64(dut.stat_tri_drawn_o),      u64(dut.stat_tri_zero_area_o),
+                   u64(dut.stat_tri_backface_o), u64(dut.stat_tri_no_samples_o), u64(dut.stat_tri_range_o),
+                   u64(dut.stat_spans_o),        u64(dut.stat_frag_generated_o), u64(dut.stat_frag_depth_pass_o),
+                   u64(dut.stat_frag_depth_fail_o)};
+    out.k.perf = {u64(dut.perf_setup_stall_o), u64(dut.perf_fifo_full_o),    u64(dut.perf_span_stall_o),
+                  u64(dut.perf_span_wait_o),   u64(dut.perf_sample_stall_o), u64(dut.perf_pass_stall_o),
+                  u64(dut.perf_out_stall_o)};
+    out.geom = {u64(dut.stat_prims_in_o),          u64(dut.stat_prims_rejected_nan_o),
+                u64(dut.stat_prims_rejected_inf_o), u64(dut.stat_prims_varying_nonfinite_o),
+                u64(dut.stat_prims_trivial_accept_o), u64(dut.stat_prims_clipped_o),
+                u64(dut.stat_clip_vertices_created_o), u64(dut.stat_clip_triangles_out_o),
+                u64(dut.stat_prims_culled_outside_o), u64(dut.stat_geom_rejected_range_o)};
+    for (int i = 0; i < kUnitStages; ++i)
+      out.util[(size_t)i] = {flat_word(dut.perf_busy_o, i, stat_bits), flat_word(dut.perf_stalled_o, i, stat_bits),
+                             flat_word(dut.perf_starved_o, i, stat_bits)};
+    if (ro.observe) ro.observe(dut);
+  };
+  TxnOptions o = txn_options("unit", ro.run, h.seed, h.gap, h.stall);
+  o.write_wave = ro.write_wave;
+  o.print = ro.print;
+  // The last primitive may still be in the clipper (thousands of clocks) when its fragments, or
+  // none, are out: the counters are read once the unit has drained.
+  o.drain_cycles = 20000;
+  o.input_delay_cycles = kUnitRegs + 1;
+  out.k.r = ro.simulate ? ro.simulate(v, o, hook) : run_txn<Dut>(v, nullptr, o, &hook);
+  out.k.depth = mem.words();
+  out.k.bad_addresses = mem.bad_addresses;
+  return out;
+}
+
+}  // namespace fxr::tb
