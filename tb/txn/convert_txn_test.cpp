@@ -30,13 +30,7 @@ const std::string kCommitted = std::string(FXR_SOURCE_DIR) + "/vectors/scenes/tr
 const std::string kDefault = std::string(FXR_BINARY_DIR) + "/vectors/scene_default";
 
 TxnOptions opts(const std::string& run, uint64_t seed, unsigned gap, unsigned stall) {
-  TxnOptions o;
-  o.unit = "convert";
-  o.run_name = run;
-  o.seed = seed;
-  o.in_gap_pct = gap;
-  o.out_stall_pct = stall;
-  return o;
+  return fxr::tb::txn_options("convert", run, seed, gap, stall);
 }
 
 // The outcome pulses of the transfers, counted in the clock they happen.

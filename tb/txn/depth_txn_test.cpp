@@ -75,13 +75,7 @@ TxnHook<Dut> hook_for(const State& s, DepthMem& mem) {
 }
 
 TxnOptions opts(const std::string& run, uint64_t seed, unsigned gap, unsigned stall) {
-  TxnOptions o;
-  o.unit = "depth";
-  o.run_name = run;
-  o.seed = seed;
-  o.in_gap_pct = gap;
-  o.out_stall_pct = stall;
-  return o;
+  return fxr::tb::txn_options("depth", run, seed, gap, stall);
 }
 
 size_t col(const fxr::VecLayout& lay, const char* n) {

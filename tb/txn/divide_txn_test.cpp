@@ -33,13 +33,7 @@ const std::string kShared = std::string(FXR_BINARY_DIR) + "/vectors/scene_defaul
 constexpr int kVaryings = fxr::kRecordPackageVaryings;  // fxr_rec_pkg::NumVaryings of the build
 
 TxnOptions opts(const std::string& run, uint64_t seed, unsigned gap, unsigned stall) {
-  TxnOptions o;
-  o.unit = "divide";
-  o.run_name = run;
-  o.seed = seed;
-  o.in_gap_pct = gap;
-  o.out_stall_pct = stall;
-  return o;
+  return fxr::tb::txn_options("divide", run, seed, gap, stall);
 }
 
 fxr::Config shared_config() { return fxr::load_config(FXR_SHARED_RECIP_CONFIG); }

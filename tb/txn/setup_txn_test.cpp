@@ -31,13 +31,7 @@ constexpr int kOutcomes = 5;  // SetupOutcome: Ok … RejectedRange
 using Counts = std::array<uint64_t, kOutcomes>;
 
 TxnOptions opts(const std::string& run, uint64_t seed, unsigned gap, unsigned stall) {
-  TxnOptions o;
-  o.unit = "setup";
-  o.run_name = run;
-  o.seed = seed;
-  o.in_gap_pct = gap;
-  o.out_stall_pct = stall;
-  return o;
+  return fxr::tb::txn_options("setup", run, seed, gap, stall);
 }
 
 // The model's outcome of every setup.in record: SetupStage re-stepped on the record read back
