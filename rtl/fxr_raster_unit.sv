@@ -158,7 +158,7 @@ module fxr_raster_unit #(
   logic s1_valid, s1_ready, rej_nan, rej_inf, var_repl;
   fxr_rec_pkg::exact_triangle_t s1_out;
   fxr_input u_input (
-    .clk_i, .rst_ni, .in_valid_i, .in_ready_o, .in_i(fxr_rec_pkg::input_triangle_t'(in_masked)),
+    .clk_i, .rst_ni, .in_valid_i, .in_ready_o, .in_i(in_masked),
     .out_valid_o(s1_valid), .out_ready_i(s1_ready), .out_o(s1_out),
     .rej_nan_o(rej_nan), .rej_inf_o(rej_inf), .var_replaced_o(var_repl)
   );
