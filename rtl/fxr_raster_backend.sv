@@ -20,8 +20,8 @@
 //     tri_in        triangles accepted
 //     tri_drawn     triangles set up (SetupOutcome::Ok)
 //     tri_zero_area, tri_backface, tri_no_samples, tri_range   culled / rejected at setup, by the
-//                   model's outcome (per setup triangle; RasterStats counts per primitive, the
-//                   same when no primitive is clipped into pieces)
+//                   model's outcome, per setup triangle (RasterStats::tris; the model's
+//                   dispositions prims_* count per primitive: docs/pipeline.md, "Statistics")
 //     spans         spans out of traversal
 //     frag_generated  RasterStats::fragments_generated (covered pixels: x1 − x0 + 1 per span)
 //     frag_depth_pass RasterStats::fragments_depth_pass (samples out of fxr_depth, into fxr_divide)

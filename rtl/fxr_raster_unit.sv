@@ -26,11 +26,13 @@
 //     prims_in, prims_rejected_nan, prims_rejected_inf, prims_varying_nonfinite  (stage 1)
 //     prims_trivial_accept, prims_clipped, clip_vertices_created, clip_triangles_out,
 //     prims_culled_outside                                                      (stage 2)
-//     geom_rejected_range   primitives rejected in stages 2–4 (clip RejectedViewport /
-//                           RejectedOverflow, a reciprocal error, a viewport range rejection)
-//     tri_*, spans, frag_*  fxr_raster_backend's (per setup triangle; RasterStats counts the
-//                           setup outcomes per primitive: equal when no primitive is clipped into
-//                           pieces with different outcomes)
+//     geom_rejected_range   primitives the clipper rejects for range (RejectedViewport /
+//                           RejectedOverflow) + clipped pieces dropped by stage 3 (a reciprocal
+//                           error) or 4 (a code out of range): a dropped piece is dropped alone,
+//                           the primitive's other pieces go on (RasterStats::tris.geom_rejected_range)
+//     tri_*, spans, frag_*  fxr_raster_backend's, per setup triangle (RasterStats::tris; the
+//                           model's dispositions prims_* are per primitive: docs/pipeline.md,
+//                           "Statistics: primitives, pieces, setup triangles")
 //   perf_busy_o, perf_stalled_o,   per stage (index 0 input, 1 clip, 2 recip, 3 viewport, 4 back
 //   perf_starved_o                 end), StatBits each at [i*StatBits +: StatBits]: clocks with a
 //                                  record leaving the stage (busy), one waiting for the next stage
@@ -40,7 +42,7 @@ module fxr_raster_unit #(
   parameter int WindowIntBits  = fxr_config_pkg::RasterWindowIntBits,
   parameter int DepthFormat    = fxr_config_pkg::RasterDepthFormat,
   parameter int StatBits       = 32,
-  parameter int ViewportLanes  = 3,   // fxr_viewport's dividers (docs/rtl.md, "fxr_viewport")
+  parameter int ViewportLanes  = fxr_rec_pkg::ViewportLanes,  // fxr_viewport's dividers (docs/rtl.md, "fxr_viewport")
   localparam int Db            = DepthFormat == fxr_config_pkg::RasterDepthFormatD24 ? 24 : 16,
   localparam int PB            = WindowIntBits,
   localparam int AddrBits      = 2 * WindowIntBits,
@@ -236,8 +238,8 @@ module fxr_raster_unit #(
       if (is_clipped) n_created_q <= n_created_q + StatBits'(clip_created);
       n_clipout_q <= n_clipout_q + StatBits'(clip_fire);
       n_outside_q <= n_outside_q + StatBits'(is_outside);
-      // A primitive rejected in geometry: by the clipper, or one of its pieces by the reciprocal
-      // unit or the viewport (docs/rtl.md: a primitive with several pieces, one of them rejected).
+      // Rejected in geometry: a primitive by the clipper, or one piece by the reciprocal unit or
+      // the viewport (that piece alone: docs/pipeline.md, "Statistics").
       n_range_q <= n_range_q + StatBits'(is_range) + StatBits'(recip_err) + StatBits'(vp_rej);
     end
   end

@@ -32,7 +32,7 @@
 // Only the attribute-position configuration (raster.attr_subpixel_bits > subpixel_bits, the
 // default) is built: on the other path the stage is products only (not yet in RTL).
 module fxr_viewport #(
-  parameter int Lanes = 3
+  parameter int Lanes = fxr_rec_pkg::ViewportLanes  // model/stages/viewport.hpp kViewportLanes
 ) (
   input  logic                                                  clk_i,
   input  logic                                                  rst_ni,

@@ -3,7 +3,7 @@
 // setup_triangle_t, first field most significant. Kept separate so that Icarus 11, which aborts
 // on the package's struct types, can run it (tb/icarus/viewport_txn_tb.sv). docs/rtl.md, "fxr_viewport".
 module fxr_viewport_core #(
-  parameter int Lanes = 3
+  parameter int Lanes = fxr_rec_pkg::ViewportLanes  // model/stages/viewport.hpp kViewportLanes
 ) (
   input  logic                                               clk_i,
   input  logic                                               rst_ni,

@@ -152,7 +152,7 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
   return ProjectStatus::Ok;
 }
 
-StageCost ViewportStage::cost(const Config& cfg) {
+StageCost ViewportStage::cost(const Config& cfg, int num_varyings, int lanes) {
   const RasterConfig& r = cfg.raster;
   const int sb = clip_vertex_sig_bits(cfg), rb = cfg.recip.out_sig_bits;
   StageCost c;
@@ -162,7 +162,7 @@ StageCost ViewportStage::cost(const Config& cfg) {
     c.add_mult(sb + rb, r.window_int_bits + 1);
     c.add_mult(sb + rb, r.window_int_bits + 1);
   }
-  c.latency = 3;  // products, scale + offset, rounding (estimate until rtl/ has the stage)
+  c.latency = 3;  // products, scale + offset, rounding (the products-only path has no RTL)
   c.ii = 1;
   c.adder_bits = 3 * (int64_t)(3 + kMaxVaryings) * (sb + rb);
   if (attr_separate(r)) {
@@ -180,7 +180,12 @@ StageCost ViewportStage::cost(const Config& cfg) {
       c.add_mult(sb, r.window_int_bits + 1);
       c.add_mult(sb, r.window_int_bits + 1);
     }
-    c.latency += q_xy;  // a bit-serial restoring divider per quotient bit (pipelined: ii stays 1)
+    // The RTL (rtl/fxr_viewport_core.sv): J quotient jobs issued `lanes` per clock over
+    // ⌈J / lanes⌉ slots (the initiation interval), each through viewport_quot_bits pipeline
+    // stages, plus the input register, the result alignment and the output register.
+    const int jobs = 3 * (4 + std::max(num_varyings, 0));
+    c.ii = (jobs + std::max(lanes, 1) - 1) / std::max(lanes, 1);
+    c.latency = c.ii + viewport_quot_bits(r) + 3;
   }
   c.ff_bits = c.latency * record_bits<SetupTriangle>(cfg, kMaxVaryings);
   return c;

@@ -9,6 +9,7 @@
 // reciprocal unit and the snap. docs/pipeline.md, stages 3 and 4.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "model/config/config.hpp"
@@ -70,6 +71,18 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
 
 // ---- the stage ------------------------------------------------------------------------------
 
+// Divider lanes of stage 4 in the RTL (fxr_viewport's Lanes, fxr_raster_unit's ViewportLanes):
+// emitted into fxr_rec_pkg as ViewportLanes, the RTL's default (one source).
+inline constexpr int kViewportLanes = 3;
+
+// Quotient bits of the stage-4 dividers (rtl/fxr_viewport_core.sv QuotBits): the widest of
+// ax / ay (window_int_bits + attr_subpixel_bits + 5: two fraction bits, guard, range), z
+// (z_frac_bits + 4) and the floats rw, vw_k (attr_sig_bits + 2: guard and sticky).
+inline int viewport_quot_bits(const RasterConfig& r) {
+  const int qxy = r.window_int_bits + r.attr_subpixel_bits + 5, qz = r.z_frac_bits + 4, qf = r.attr_sig_bits + 2;
+  return std::max(qxy, std::max(qz, qf));
+}
+
 enum class ViewportOutcome : uint8_t {
   Emitted,
   RejectedRange,  // a snapped coordinate outside the window format (not reachable inside the
@@ -94,8 +107,13 @@ class ViewportStage {
     return ViewportOutcome::Emitted;
   }
 
-  // Planned RTL: per vertex 3 + num_varyings products with 1/w, the viewport scale, one RNE each.
-  static StageCost cost(const Config& cfg);
+  // The RTL's cost (rtl/fxr_viewport_core.sv; docs/rtl.md, "fxr_viewport"): with the attribute
+  // path (attr_separate, the default) a triangle's J = 3·(4 + num_varyings) correctly rounded
+  // quotients run on `lanes` pipelined restoring dividers of viewport_quot_bits(cfg) stages:
+  // ii = ⌈J / lanes⌉ clocks per triangle, latency = ii + viewport_quot_bits(cfg) + 3 clocks.
+  // Without it (not built in RTL): the planned products (latency 3, ii 1). num_varyings: the
+  // record package's (the RTL's NumVaryings); lanes: fxr_raster_unit's ViewportLanes.
+  static StageCost cost(const Config& cfg, int num_varyings = kRecordPackageVaryings, int lanes = kViewportLanes);
 
  private:
   const Config& cfg_;

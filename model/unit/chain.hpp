@@ -15,8 +15,10 @@
 // The records are valid only during the call.
 //
 // Geometry (stages 1–4) runs one input primitive to completion before setup sees any of its
-// triangles: a primitive whose clipped piece fails in a later geometry stage is rejected whole
-// (RejectedRange), as the unit's statistics require.
+// triangles. A clipped piece that fails in stage 3 (reciprocal error) or stage 4 (a code out of
+// range) is dropped alone, as a streaming clipper and the RTL (rtl/fxr_raster_unit.sv) do: the
+// primitive's other pieces go on; it is RejectedRange only when every piece was dropped
+// (docs/pipeline.md, "Statistics: primitives, pieces, setup triangles").
 #pragma once
 
 #include <cstdint>
@@ -71,13 +73,11 @@ class GeometryChain {
       case ConvertOutcome::RejectedRange: return GeomOutcome::RejectedRange;
     }
     taps_.template in<ClipStage>(*ex);
-    const size_t first = out.size();
-    bool failed = false;
     uint64_t pieces = 0;
+    rejected_ = 0;
     const ClipReport r = clip_.step(*ex, [&](const ClippedTriangle& c) {
       taps_.template out<ClipStage>(c);
       ++pieces;
-      if (failed) return;  // the primitive is rejected whole; its other pieces go no further
       taps_.template in<RecipStage>(c);
       const RecipOutcome ro = recip_.step(c, [&](const RecipTriangle& rt) {
         taps_.template out<RecipStage>(rt);
@@ -86,10 +86,11 @@ class GeometryChain {
           taps_.template out<ViewportStage>(t);
           out.push_back(t);
         });
-        if (vo != ViewportOutcome::Emitted) failed = true;
+        if (vo != ViewportOutcome::Emitted) ++rejected_;  // this piece only
       });
-      if (ro != RecipOutcome::Emitted) failed = true;
+      if (ro != RecipOutcome::Emitted) ++rejected_;  // this piece only
     });
+    s.tris.geom_rejected_range += rejected_;
     switch (r.outcome) {
       case ClipOutcome::Accepted: ++s.prims_trivial_accept; break;
       case ClipOutcome::Clipped:
@@ -105,19 +106,20 @@ class GeometryChain {
       case ClipOutcome::CulledOutside:
       case ClipOutcome::ClippedAway: return GeomOutcome::CulledOutside;
       case ClipOutcome::RejectedViewport:
-      case ClipOutcome::RejectedOverflow: return GeomOutcome::RejectedRange;
+      case ClipOutcome::RejectedOverflow: ++s.tris.geom_rejected_range; return GeomOutcome::RejectedRange;
       case ClipOutcome::Clipped: s.clip_triangles_out += pieces; break;
       case ClipOutcome::Accepted: break;
     }
-    if (failed) {
-      out.resize(first);
-      return GeomOutcome::RejectedRange;
-    }
+    if (pieces > 0 && rejected_ == pieces) return GeomOutcome::RejectedRange;  // every piece dropped
     return GeomOutcome::Emitted;
   }
 
+  // Pieces of the last run()'s primitive dropped in stage 3 or 4 (its other pieces were emitted).
+  uint64_t pieces_rejected() const { return rejected_; }
+
  private:
   Taps& taps_;
+  uint64_t rejected_ = 0;
   ConvertStage convert_;
   ClipStage clip_;
   RecipStage recip_;
@@ -187,9 +189,11 @@ class UnitChain {
   UnitChain(const Config& cfg, const DrawState& st, FrameOutput& f, FragmentSink* sink, Taps& taps)
       : stats_(f.stats), geometry_(cfg, st, taps), fragments_(cfg, st, f, sink, taps) {}
 
-  // Contract: one input primitive through every stage. It counts once in the statistics: as
+  // Contract: one input primitive through every stage. It counts once in the dispositions: as
   // drawn if any of its triangles was rasterised, else by the first reason in the order
-  // range > backface > no samples > zero area (all pieces of one primitive share its facing).
+  // range > backface > no samples > zero area over its pieces (range: a piece dropped in stage 3
+  // or 4, or rejected by setup; all pieces of one primitive share its facing). Its setup
+  // triangles count once each by their setup outcome (s.tris, the unit's tri_* counters).
   void draw(const ClipTriangle& tri, uint32_t prim) {
     RasterStats& s = stats_;
     ++s.prims_in;
@@ -203,14 +207,15 @@ class UnitChain {
       case GeomOutcome::RejectedRange: ++s.prims_rejected_range; return;
       case GeomOutcome::Emitted: break;
     }
-    bool drawn = false, range = false, back = false, nosamp = false;
+    bool drawn = false, range = geometry_.pieces_rejected() > 0, back = false, nosamp = false;
     for (const SetupTriangle& t : pieces_) {
+      ++s.tris.in;
       switch (fragments_.run(t)) {
-        case SetupOutcome::Ok: drawn = true; break;
-        case SetupOutcome::RejectedRange: range = true; break;
-        case SetupOutcome::CulledBackface: back = true; break;
-        case SetupOutcome::CulledNoSamples: nosamp = true; break;
-        case SetupOutcome::CulledZeroArea: break;
+        case SetupOutcome::Ok: drawn = true; ++s.tris.drawn; break;
+        case SetupOutcome::RejectedRange: range = true; ++s.tris.range; break;
+        case SetupOutcome::CulledBackface: back = true; ++s.tris.backface; break;
+        case SetupOutcome::CulledNoSamples: nosamp = true; ++s.tris.no_samples; break;
+        case SetupOutcome::CulledZeroArea: ++s.tris.zero_area; break;
       }
     }
     if (drawn) ++s.prims_drawn;

@@ -16,6 +16,11 @@ namespace fxr {
 
 // Upper bound on varyings per vertex (0 … at least 16: docs/references.md#spec-raster-unit).
 inline constexpr int kMaxVaryings = 16;
+// The number of varyings of the generated record package when none is given (`fxraster layout
+// --emit-records-sv`, build/gen/fxr_rec_pkg.sv): the default scene's and scenes/transactions.json's.
+// The testbenches of record-port units are built for it (fxr_rec_pkg::NumVaryings), and the RTL
+// stage costs that depend on it (ViewportStage::cost) default to it.
+inline constexpr int kRecordPackageVaryings = 2;
 
 // One vertex as the vertex stage emits it: raw float32 values (bit patterns are kept, so a
 // user can feed exactly what their vertex stage produced, NaN payloads included).
@@ -181,6 +186,18 @@ struct LineStats {
 
 // Every input primitive ends in exactly one of: drawn, culled_* or rejected_*
 // (prims_in == prims_drawn + Σ culled + Σ rejected is asserted by tests).
+// The unit's counters past the clipper (rtl/fxr_raster_unit.sv stat_geom_rejected_range_o,
+// stat_tri_*_o), counted per clipped piece and per setup triangle where RasterStats'
+// dispositions are per primitive (docs/pipeline.md, "Statistics: primitives, pieces, setup
+// triangles"). Not in RasterStats::visit(): the statistics JSON stays as it was.
+struct TriStats {
+  uint64_t geom_rejected_range = 0;  // primitives the clipper rejects for range (RejectedViewport,
+                                     // RejectedOverflow) + clipped pieces dropped by stage 3 (a
+                                     // reciprocal error) or stage 4 (a code out of range)
+  uint64_t in = 0;                   // setup triangles (stage 5's inputs)
+  uint64_t drawn = 0, zero_area = 0, backface = 0, no_samples = 0, range = 0;  // by setup outcome
+};
+
 struct RasterStats {
   uint64_t prims_in = 0;
   uint64_t prims_trivial_accept = 0;     // no clipping needed
@@ -205,6 +222,8 @@ struct RasterStats {
   // Not in visit(): the JSON of a draw without lines stays as it was; stats_json adds "lines"
   // when lines.in > 0.
   LineStats lines;
+  // Per piece and per setup triangle (triangles of UnitChain only; not in visit()).
+  TriStats tris;
 
   template <class V>
   void visit(V& v) {

@@ -9,6 +9,7 @@
 #include "model/stages/recip_stage.hpp"
 #include "model/stages/setup.hpp"
 #include "model/stages/traverse.hpp"
+#include "model/stages/viewport.hpp"
 #include "model/vectors/record_vectors.hpp"
 
 namespace fxr {
@@ -177,6 +178,9 @@ void emit_sv_record_package(std::ostream& os, const Config& cfg, int num_varying
     os << "  localparam int ClipOutcome" << n << " = " << (int)o << ";\n";
   emit_record_struct<ClippedTriangle>(os, "clipped_triangle", s);  // clip -> recip
   emit_record_struct<RecipTriangle>(os, "recip_triangle", s);      // recip -> viewport
+  // Stage 4 (rtl/fxr_viewport.sv): its divider lanes, the default of fxr_viewport's Lanes and
+  // fxr_raster_unit's ViewportLanes (model/stages/viewport.hpp; ViewportStage::cost uses it).
+  os << "  localparam int ViewportLanes = " << kViewportLanes << ";  // stage-4 divider lanes\n";
   emit_record_struct<SetupTriangle>(os, "setup_triangle", s);
   emit_record_struct<TriangleEquations>(os, "triangle_equations", s);
   emit_record_struct<Span>(os, "span", s);

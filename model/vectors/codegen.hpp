@@ -14,6 +14,7 @@
 #include <string>
 
 #include "model/config/config.hpp"
+#include "model/unit/io.hpp"
 #include "model/vectors/vectors.hpp"
 
 namespace fxr {
@@ -35,9 +36,6 @@ void emit_verilator_ports(std::ostream& os, const std::string& unit, const VecLa
 // significant. The transaction testbench (tb/txn_harness.hpp) binds a port of such a struct to
 // the same fields of a transaction vector row (docs/rtl.md, "Record ports").
 void emit_sv_record_package(std::ostream& os, const Config& cfg, int num_varyings);
-// The number of varyings of the generated record package when none is given (`fxraster layout
-// --emit-records-sv`, build/gen/fxr_rec_pkg.sv): the default scene's and scenes/transactions.json's.
-// The testbenches of record-port units are built for it (fxr_rec_pkg::NumVaryings).
-inline constexpr int kRecordPackageVaryings = 2;
+// kRecordPackageVaryings (the varyings of the generated record package): model/unit/io.hpp.
 
 }  // namespace fxr

@@ -251,13 +251,11 @@ inline Draw model_draw(const std::string& name, const Config& cfg, DrawState st,
   d.depth = std::move(f.depth);
   d.fragments = d.v.out.rows;
   d.stats = f.stats;
-  // Setup outcomes per triangle: SetupStage stepped again on setup's inputs (the chain's
-  // accounting is per primitive, RasterStats).
-  SetupStage stage(cfg, st, true);
-  std::array<uint64_t, 5> oc{};
-  for (const SetupTriangle& t : taps.tris) ++oc[(size_t)stage.step(t, [](const TriangleEquations&) {})];
-  d.want = {taps.tris.size(), oc[0], oc[1], oc[2], oc[3], oc[4], taps.spans, f.stats.fragments_generated,
-            f.stats.fragments_depth_pass, f.stats.fragments_depth_fail};
+  // Setup outcomes per setup triangle: the chain's own counters (RasterStats::tris, the unit's
+  // tri_* definition; docs/pipeline.md, "Statistics: primitives, pieces, setup triangles").
+  const TriStats& ts = f.stats.tris;
+  d.want = {ts.in, ts.drawn, ts.zero_area, ts.backface, ts.no_samples, ts.range, taps.spans,
+            f.stats.fragments_generated, f.stats.fragments_depth_pass, f.stats.fragments_depth_fail};
   return d;
 }
 

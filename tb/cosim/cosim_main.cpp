@@ -80,12 +80,26 @@ struct TapState {
 };
 constexpr size_t kMaxListed = 20;
 
+// A boundary's busy / stalled / starved clocks at one moment of the run.
+using TapClocks = std::array<std::array<uint64_t, 3>, kTaps>;
+
 struct TapChecker {
   const Draw* draw = nullptr;
   std::array<RecordBinding, kTaps> bind;
   std::array<TapState, kTaps> st;
   uint64_t cycle = 0;
   VecRow got;
+  // The clocks before the first input transfer (reset, the register writes) and up to the last
+  // output transfer: utilisation is reported over the clocks between the two, the same window
+  // as the cycle figure; what follows the last output is the harness's drain (it waits for the
+  // unit to settle before reading the counters) and is reported apart.
+  bool started = false;
+  TapClocks at_first{}, at_last{};
+  TapClocks clocks() const {
+    TapClocks c{};
+    for (int k = 0; k < kTaps; ++k) c[(size_t)k] = {st[(size_t)k].busy, st[(size_t)k].stalled, st[(size_t)k].starved};
+    return c;
+  }
 
   explicit TapChecker(const Draw& d) : draw(&d) {
     for (int k = kFirstTap; k < kTaps; ++k) bind[(size_t)k] = RecordBinding(d.taps[(size_t)k].lay, fxr::tb::kTapHeaderFields);
@@ -93,6 +107,8 @@ struct TapChecker {
   void reset() {
     st = {};
     cycle = 0;
+    started = false;
+    at_first = at_last = TapClocks{};
   }
   template <class P>
   void check(int k, bool valid, bool ready, const P& port) {
@@ -128,6 +144,10 @@ struct TapChecker {
     }
   }
   void observe(Dut& d) {
+    if (!started && d.in_valid_i && d.in_ready_o) {
+      started = true;
+      at_first = clocks();
+    }
 #ifdef FXR_COSIM_UNIT
     check(0, FXR_UNIT(s1_valid), FXR_UNIT(s1_ready), FXR_UNIT(s1_out));
     check(1, FXR_UNIT(s2_valid), FXR_UNIT(s2_ready), FXR_UNIT(s2_out));
@@ -139,6 +159,7 @@ struct TapChecker {
     check(6, FXR_BE(ip_out_valid), FXR_BE(ip_out_ready), FXR_BE(ip_out));
     check(7, FXR_BE(dp_out_valid), FXR_BE(dp_out_ready), FXR_BE(dp_out));
     check(8, d.out_valid_o, d.out_ready_i, d.out_o);
+    if (d.out_valid_o && d.out_ready_i) at_last = clocks();
     ++cycle;
   }
   // Records the model has and the RTL never produced.
@@ -320,6 +341,15 @@ int run(const Options& o) {
   // ---- figures -----------------------------------------------------------------------------
   const uint64_t cyc = k.r.last_out_cycle > k.r.first_in_cycle ? k.r.last_out_cycle - k.r.first_in_cycle + 1 : 0;
   const uint64_t gen = d.want[7], passed = d.want[8];
+  // Utilisation window: the first input transfer to the last output transfer (TapChecker).
+  const TapClocks total = taps.clocks();
+  const TapClocks& t_first = taps.at_first;
+  const TapClocks& t_last = taps.at_last[kTaps - 1][0] >= t_first[kTaps - 1][0] && taps.started ? taps.at_last : total;
+  auto win = [&](int t, int i) { return t_last[(size_t)t][(size_t)i] - t_first[(size_t)t][(size_t)i]; };
+  auto sum3 = [](const std::array<uint64_t, 3>& a) { return a[0] + a[1] + a[2]; };
+  const uint64_t lead_clocks = sum3(t_first[kTaps - 1]);
+  const uint64_t window_clocks = sum3(t_last[kTaps - 1]) - lead_clocks;
+  const uint64_t drain_clocks = sum3(total[kTaps - 1]) - sum3(t_last[kTaps - 1]);
   nlohmann::json j;
   j["result"] = match ? "match" : "mismatch";
   j["scene"] = {{"name", sc.name}, {"source", sc.source}, {"viewport", {sc.state.viewport_w, sc.state.viewport_h}},
@@ -334,8 +364,8 @@ int run(const Options& o) {
     const TapState& s = taps.st[(size_t)t];
     nlohmann::json e{{"boundary", std::string(kTapNames[t]) + ".out"}, {"model_records", d.taps[(size_t)t].rows},
                      {"rtl_records", s.n}, {"matched", s.matched}, {"mismatched", s.mismatched},
-                     {"missing", taps.missing(t)}, {"busy_clocks", s.busy}, {"stalled_clocks", s.stalled},
-                     {"starved_clocks", s.starved}};
+                     {"missing", taps.missing(t)}, {"busy_clocks", win(t, 0)}, {"stalled_clocks", win(t, 1)},
+                     {"starved_clocks", win(t, 2)}};
     if (!s.first.empty())
       e["first_mismatch"] = {{"seq", s.first[0].seq}, {"cycle", s.first[0].cycle}, {"field", s.first[0].field},
                              {"rtl", s.first[0].got}, {"model", s.first[0].exp}};
@@ -355,7 +385,9 @@ int run(const Options& o) {
   j["counters"] = jc;
   j["counters_mismatched"] = counters_diff;
   j["depth_buffer_words_differing"] = depth_diff;
-  j["cycles"] = {{"first_input_to_last_output", cyc}, {"simulated", k.r.cycles}};
+  j["cycles"] = {{"first_input_to_last_output", cyc}, {"simulated", k.r.cycles},
+                {"utilisation_window", window_clocks}, {"before_first_input", lead_clocks},
+                {"drain_after_last_output", drain_clocks}};
   j["fragments_per_clock"] = {{"generated", cyc ? (double)gen / (double)cyc : 0.0},
                               {"passed", cyc ? (double)passed / (double)cyc : 0.0}};
   nlohmann::json jp = nlohmann::json::object();
@@ -410,12 +442,14 @@ int run(const Options& o) {
      << fmt("%.4f", cyc ? (double)passed / (double)cyc : 0.0) << " passed\n\n";
   md << "Per-stage utilisation, from the handshake at each stage's output (busy: a record leaves; stalled: "
         "one waits for the next stage; starved: none ready), over the "
-     << k.r.cycles << " simulated clocks:\n\n| stage | busy | stalled | starved |\n|---|---|---|---|\n";
+     << window_clocks << " clocks from the first input to the last output (of " << k.r.cycles
+     << " simulated: " << lead_clocks << " before the first input — reset, register writes — and "
+     << drain_clocks << " of drain after the last output, while the harness waits for the unit to settle before "
+        "reading the counters):\n\n| stage | busy | stalled | starved |\n|---|---|---|---|\n";
   for (int t = kFirstTap; t < kTaps; ++t) {
-    const TapState& s = taps.st[(size_t)t];
-    const uint64_t all = s.busy + s.stalled + s.starved;
-    md << "| " << kTapNames[t] << " | " << fmt("%.1f %%", pct(s.busy, all)) << " | " << fmt("%.1f %%", pct(s.stalled, all))
-       << " | " << fmt("%.1f %%", pct(s.starved, all)) << " |\n";
+    const uint64_t all = win(t, 0) + win(t, 1) + win(t, 2);
+    md << "| " << kTapNames[t] << " | " << fmt("%.1f %%", pct(win(t, 0), all)) << " | " << fmt("%.1f %%", pct(win(t, 1), all))
+       << " | " << fmt("%.1f %%", pct(win(t, 2), all)) << " |\n";
   }
   md << "\nThe back end's stall counters (rtl/fxr_raster_backend.sv perf_*_o):";
   for (int i = 0; i < fxr::tb::kPerf; ++i) md << (i ? ", " : " ") << fxr::tb::kPerfNames[i] << " " << k.perf[(size_t)i];

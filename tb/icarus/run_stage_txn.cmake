@@ -1,5 +1,6 @@
-# ctest driver of tb/icarus/stage_txn_tb.sv: one back-end stage with record ports (fxr_setup,
-# fxr_traverse, fxr_interp, fxr_depth, fxr_divide) on a transaction dump's S.in / S.out under
+# ctest driver of tb/icarus/stage_txn_tb.sv: one stage with record ports (fxr_clip,
+# fxr_recip_stage for STAGE recip, fxr_viewport, fxr_setup, fxr_traverse, fxr_interp, fxr_depth,
+# fxr_divide) on a transaction dump's S.in / S.out under
 # Icarus 11 (docs/rtl.md, "Icarus on the record ports"):
 #   cmake -DIVERILOG=… -DVVP=… -DTB=tb/icarus/stage_txn_tb.sv -DRTL=rtl -DPKGS="cfg_pkg.sv;rec_pkg.sv"
 #         -DSTAGE=traverse -DDUMP=/abs/dump -DWORK=<build dir> [-DSEED=n] [-DCORRUPT=row]
@@ -54,7 +55,7 @@ if(ndumps GREATER 1)
   endforeach()
   return()
 endif()
-set(modules setup traverse interp depth divide)
+set(modules clip recip viewport setup traverse interp depth divide)
 if(NOT STAGE IN_LIST modules)
   message(FATAL_ERROR "run_stage_txn.cmake: STAGE must be one of ${modules}")
 endif()
@@ -194,6 +195,10 @@ ${diff}    return \"\";
 
 # 3. Compile and run.
 include(${CMAKE_CURRENT_LIST_DIR}/txn_check.cmake)
+set(module fxr_${STAGE})
+if(STAGE STREQUAL "recip")
+  set(module fxr_recip_stage)  # stage 3's record-port module (fxr_recip is its lane)
+endif()
 fxr_icarus_txn(stage_txn_tb ${STAGE} "${WORK}/stage_txn_tb.vvp"
-               "-I;${WORK};-y;${WORK}/rtl;-Y;.sv;${PKGS};${WORK}/rec_import.sv;${WORK}/rtl/fxr_${STAGE}.sv;${TB}"
+               "-I;${WORK};-y;${WORK}/rtl;-Y;.sv;${PKGS};${WORK}/rec_import.sv;${WORK}/rtl/${module}.sv;${TB}"
                "+in=${DUMP}/${STAGE}.in.hex;+out=${DUMP}/${STAGE}.out.hex;+ctx=${ctx_file};+seed=${SEED}")

@@ -1,5 +1,5 @@
-// stage_txn_tb: plain SystemVerilog testbench of one back-end stage with record ports — fxr_setup,
-// fxr_traverse, fxr_interp, fxr_depth or fxr_divide — driven by a transaction dump's S.in.hex and
+// stage_txn_tb: plain SystemVerilog testbench of one stage with record ports — fxr_clip,
+// fxr_recip_stage (stage 3), fxr_viewport, fxr_setup, fxr_traverse, fxr_interp, fxr_depth or fxr_divide — driven by a transaction dump's S.in.hex and
 // checked against its S.out.hex (docs/vectors.md, "Transaction vectors"), for Icarus 11: the
 // `$readmemh` counterpart of tb/txn_harness.hpp. tb/icarus/run_stage_txn.cmake writes
 // stage_txn_gen.svh (which stage, widths, counts, header offsets, the record of a line, the draw
@@ -9,7 +9,9 @@
 // row's `ctx` line of setup.out, with the same handshake); outputs see random back-pressure; the
 // i-th output must equal row i of S.out (the whole record; interp: out_last_o = the row's `last`),
 // never before the input it came from (its txn) was accepted, none missing, none extra.
-// fxr_setup: the cull pulses must count the rows with n_out = 0. fxr_depth: a memory behind its
+// fxr_setup: the cull pulses, fxr_recip_stage: err_o, fxr_viewport: rej_range_o must count the rows
+// with n_out = 0; fxr_clip: out_last_o must be the row's `last`.
+// fxr_depth: a memory behind its
 // port (cleared to the maximum code, in-order responses after a random latency of 1..MaxLat,
 // random request stalls; WritePort from the driver), and the final buffer must hold, at each pixel,
 // the code of the last passing sample of S.out (depth write on) or the cleared code.
@@ -31,6 +33,8 @@ module stage_txn_tb;
   localparam int PB     = fxr_config_pkg::RasterWindowIntBits;
 `ifdef FXR_STAGE_INTERP
   localparam bit HasLast = 1'b1;  // out_last_o: the span's last sample (the dump's `last`)
+`elsif FXR_STAGE_CLIP
+  localparam bit HasLast = 1'b1;  // out_last_o: the primitive's last piece (the dump's `last`)
 `else
   localparam bit HasLast = 1'b0;  // no out_last_o (as the Verilator harness: last checked where the DUT has it)
 `endif
@@ -59,6 +63,34 @@ module stage_txn_tb;
     .cull_i(2'(Ds_cull)), .front_ccw_i(1'(Ds_front_ccw)), .interp_i(1'(Ds_interp)),
     .out_valid_o(out_valid), .out_ready_i(out_ready), .out_o(out_r),
     .cull_valid_o(cull_valid), .cull_outcome_o(cull_outcome)
+  );
+  assign out_last = 1'b1;
+`elsif FXR_STAGE_RECIP
+  logic cull_valid;  // err_o: a triangle dropped (RecipError), one pulse per row with n_out = 0
+  fxr_recip_stage dut (
+    .clk_i(clk), .rst_ni(rst_n), .in_valid_i(in_valid), .in_ready_o(in_ready), .in_i(in_r),
+    .out_valid_o(out_valid), .out_ready_i(out_ready), .out_o(out_r), .err_o(cull_valid)
+  );
+  assign out_last = 1'b1;
+`elsif FXR_STAGE_CLIP
+  logic done;
+  logic [fxr_rec_pkg::ClipOutcomeBits-1:0] done_outcome;
+  logic [$clog2(fxr_rec_pkg::ClipMaxPolyVerts * fxr_rec_pkg::ClipNumPlanes + 1)-1:0] done_created;
+  fxr_clip dut (
+    .clk_i(clk), .rst_ni(rst_n),
+    .viewport_x_i(PB'(Ds_viewport_x)), .viewport_y_i(PB'(Ds_viewport_y)),
+    .viewport_w_i((PB + 1)'(Ds_viewport_w)), .viewport_h_i((PB + 1)'(Ds_viewport_h)),
+    .in_valid_i(in_valid), .in_ready_o(in_ready), .in_i(in_r),
+    .out_valid_o(out_valid), .out_ready_i(out_ready), .out_o(out_r), .out_last_o(out_last),
+    .done_o(done), .done_outcome_o(done_outcome), .done_created_o(done_created)
+  );
+`elsif FXR_STAGE_VIEWPORT
+  logic cull_valid;  // rej_range_o: a triangle dropped (RejectedRange), one pulse per row with n_out = 0
+  fxr_viewport dut (
+    .clk_i(clk), .rst_ni(rst_n), .in_valid_i(in_valid), .in_ready_o(in_ready), .in_i(in_r),
+    .viewport_x_i(PB'(Ds_viewport_x)), .viewport_y_i(PB'(Ds_viewport_y)),
+    .viewport_w_i((PB + 1)'(Ds_viewport_w)), .viewport_h_i((PB + 1)'(Ds_viewport_h)), .interp_i(1'(Ds_interp)),
+    .out_valid_o(out_valid), .out_ready_i(out_ready), .out_o(out_r), .rej_range_o(cull_valid)
   );
   assign out_last = 1'b1;
 `elsif FXR_STAGE_TRAVERSE
@@ -179,6 +211,18 @@ module stage_txn_tb;
       $display("MISMATCH setup cull pulses: %0d, the rows with n_out = 0: %0d", culled, want_culled);
     end
 `endif
+`ifdef FXR_STAGE_RECIP
+  `define FXR_STAGE_DROPS
+`endif
+`ifdef FXR_STAGE_VIEWPORT
+  `define FXR_STAGE_DROPS
+`endif
+`ifdef FXR_STAGE_DROPS
+    if (culled != want_culled) begin
+      errors++;
+      $display("MISMATCH %s drop pulses: %0d, the rows with n_out = 0: %0d", `FXR_STAGE_NAME, culled, want_culled);
+    end
+`endif
 `ifdef FXR_STAGE_DEPTH
     begin : final_buffer
       logic [Db-1:0] exp_buf [Cells];
@@ -210,6 +254,9 @@ module stage_txn_tb;
   always @(posedge clk) if (rst_n) begin
     idle++;
 `ifdef FXR_STAGE_SETUP
+    if (cull_valid) culled++;
+`endif
+`ifdef FXR_STAGE_DROPS
     if (cull_valid) culled++;
 `endif
     if (out_valid && out_ready) begin

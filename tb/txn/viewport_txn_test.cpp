@@ -21,6 +21,7 @@
 #include "Vfxr_viewport_lanes1.h"
 #include "Vfxr_viewport_lanes7.h"
 #include "model/stages/setup.hpp"
+#include "model/stages/viewport.hpp"
 #include "txn/draw_state_ports.hpp"
 #include "txn_harness.hpp"
 
@@ -61,7 +62,11 @@ struct Drive {
 
 template <class Dut = Vfxr_viewport>
 // all_handshakes: no gaps, 25 % / 25 % and 60 % / 70 %; else no gaps and 60 % / 70 % only.
-void run_dump(const std::string& dir, const std::string& name, uint64_t min_rows, bool all_handshakes = true) {
+// lanes: the DUT's Lanes. Without gaps or stalls, and when every triangle is emitted, the stream
+// is busy for exactly (rows − 1)·ii + latency + 1 clocks with ii and latency from
+// ViewportStage::cost (model/stages/viewport.hpp: the model's cost is the RTL's).
+void run_dump(const std::string& dir, const std::string& name, uint64_t min_rows, bool all_handshakes = true,
+              int lanes = fxr::kViewportLanes) {
   const SceneStageVectors v = fxr::load_scene_stage(dir, "viewport");
   ASSERT_GE(v.out.rows, min_rows);
   uint64_t dropped = 0;  // inputs with no output: the model's RejectedRange
@@ -77,6 +82,11 @@ void run_dump(const std::string& dir, const std::string& name, uint64_t min_rows
     EXPECT_EQ(r.outputs, v.out.rows);
     EXPECT_EQ(r.inputs, v.in.rows);
     EXPECT_EQ(dr.rejected, dropped);
+    if (seed == 1 && r.inputs > 0 && dropped == 0) {
+      const fxr::StageCost c = fxr::ViewportStage::cost(v.cfg, fxr::kRecordPackageVaryings, lanes);
+      EXPECT_EQ(r.busy_cycles, (v.in.rows - 1) * (uint64_t)c.ii + (uint64_t)c.latency + 1)
+          << "ViewportStage::cost: ii " << c.ii << ", latency " << c.latency << " at " << lanes << " lanes";
+    }
     if (seed == 1 && r.inputs > 0)
       std::printf("viewport %s: %llu triangles, %llu busy cycles (%.3f cycles/triangle), first in %llu, last out %llu\n",
                   name.c_str(), (unsigned long long)v.in.rows, (unsigned long long)r.busy_cycles,
@@ -92,12 +102,12 @@ TEST(ViewportTxn, DefaultSceneMatchesTheModel) { run_dump(kDefault, "viewport_de
 // Other lane counts (tb/txn/fxr_viewport_lanes1.sv, _lanes7.sv): 18 slots with one snap unit; 3
 // slots, the last one partly empty, with two snap units.
 TEST(ViewportTxn, OneLaneMatchesTheModel) {
-  run_dump<Vfxr_viewport_lanes1>(kCommitted, "viewport_lanes1_committed_", 3);
-  run_dump<Vfxr_viewport_lanes1>(kDefault, "viewport_lanes1_default_", 1000, false);
+  run_dump<Vfxr_viewport_lanes1>(kCommitted, "viewport_lanes1_committed_", 3, true, 1);
+  run_dump<Vfxr_viewport_lanes1>(kDefault, "viewport_lanes1_default_", 1000, false, 1);
 }
 TEST(ViewportTxn, SevenLanesMatchTheModel) {
-  run_dump<Vfxr_viewport_lanes7>(kCommitted, "viewport_lanes7_committed_", 3);
-  run_dump<Vfxr_viewport_lanes7>(kDefault, "viewport_lanes7_default_", 1000, false);
+  run_dump<Vfxr_viewport_lanes7>(kCommitted, "viewport_lanes7_committed_", 3, true, 7);
+  run_dump<Vfxr_viewport_lanes7>(kDefault, "viewport_lanes7_default_", 1000, false, 7);
 }
 
 // ---- expected values from the definition (GMP) ------------------------------------------------

@@ -27,13 +27,13 @@ inline const char* const kGeomStatNames[kGeomStats] = {
     "prims_in", "prims_rejected_nan", "prims_rejected_inf", "prims_varying_nonfinite", "prims_trivial_accept",
     "prims_clipped", "clip_vertices_created", "clip_triangles_out", "prims_culled_outside", "geom_rejected_range"};
 using GeomStats = std::array<uint64_t, kGeomStats>;
-// The model's: RasterStats of the draw; geometry's range rejections are the primitives rejected
-// for range less those rejected by setup (per primitive: a single-piece primitive's setup outcome).
+// The model's: RasterStats of the draw; geometry's range rejections per primitive (the clipper)
+// and per clipped piece (stages 3 and 4), RasterStats::tris.
 inline GeomStats model_geom_stats(const Draw& d) {
   const RasterStats& s = d.stats;
   return {s.prims_in, s.prims_rejected_nan, s.prims_rejected_inf, s.prims_varying_nonfinite, s.prims_trivial_accept,
           s.prims_clipped, s.clip_vertices_created, s.clip_triangles_out, s.prims_culled_outside,
-          s.prims_rejected_range - d.want[5]};
+          s.tris.geom_rejected_range};
 }
 
 constexpr int kUnitStages = 5;

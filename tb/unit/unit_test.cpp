@@ -15,7 +15,8 @@
 
 #include "Vfxr_raster_unit.h"
 #include "frontend/scene.hpp"
-#include "unit/unit_run.hpp"
+#include "tests/model/piece_cases.hpp"
+#include "unit/unit_check.hpp"
 
 namespace {
 
@@ -23,6 +24,8 @@ using Dut = Vfxr_raster_unit;
 using fxr::tb::Draw;
 using fxr::tb::Handshake;
 using fxr::tb::UnitRun;
+using fxr::tb::expect_match;
+using fxr::tb::print_figures;
 
 UnitRun run(const Draw& d, const fxr::SceneStageVectors& v, const Handshake& h, const std::string& name,
             bool wave = true) {
@@ -30,44 +33,6 @@ UnitRun run(const Draw& d, const fxr::SceneStageVectors& v, const Handshake& h, 
   o.run = name;
   o.write_wave = wave;
   return fxr::tb::run_unit<Dut>(d, v, h, o);
-}
-
-std::string geom_text(const fxr::tb::GeomStats& s) {
-  std::string t;
-  for (int i = 0; i < fxr::tb::kGeomStats; ++i)
-    t += std::string(i ? ", " : "") + fxr::tb::kGeomStatNames[i] + " " + std::to_string(s[(size_t)i]);
-  return t;
-}
-
-void expect_match(const Draw& d, const UnitRun& k, const std::string& what) {
-  EXPECT_TRUE(k.k.r.passed()) << what;
-  EXPECT_EQ(k.k.r.inputs, d.u.in.rows) << what;
-  EXPECT_EQ(k.k.r.outputs, d.u.out.rows) << what;
-  EXPECT_EQ(k.k.bad_addresses, 0u) << what;
-  EXPECT_TRUE(k.k.depth == d.depth) << what << ": the final depth buffer differs from the model's";
-  EXPECT_EQ(k.k.stats, d.want) << what << "\n  rtl:   " << fxr::tb::stats_text(k.k.stats)
-                               << "\n  model: " << fxr::tb::stats_text(d.want);
-  const fxr::tb::GeomStats g = fxr::tb::model_geom_stats(d);
-  EXPECT_EQ(k.geom, g) << what << "\n  rtl:   " << geom_text(k.geom) << "\n  model: " << geom_text(g);
-}
-
-void print_figures(const Draw& d, const UnitRun& k) {
-  const fxr::tb::TxnResult& r = k.k.r;
-  const uint64_t cyc = r.last_out_cycle > r.first_in_cycle ? r.last_out_cycle - r.first_in_cycle + 1 : 0;
-  std::printf("FIGURES unit %s: %llu primitives, %llu fragments generated, %llu passed; %llu cycles first input to "
-              "last output, %.4f fragments/clock (generated); Verilator %.0f cycles/s\n",
-              d.name.c_str(), (unsigned long long)d.u.in.rows, (unsigned long long)d.want[7],
-              (unsigned long long)d.want[8], (unsigned long long)cyc, cyc ? (double)d.want[7] / (double)cyc : 0.0,
-              r.seconds > 0 ? (double)r.cycles / r.seconds : 0.0);
-  std::printf("FIGURES unit %s: utilisation (busy / stalled / starved %% of %llu clocks):", d.name.c_str(),
-              (unsigned long long)r.cycles);
-  for (int i = 0; i < fxr::tb::kUnitStages; ++i) {
-    const auto& u = k.util[(size_t)i];
-    const double all = (double)(u[0] + u[1] + u[2]);
-    std::printf(" %s %.1f/%.1f/%.1f", fxr::tb::kUnitStageNames[i], all ? 100.0 * (double)u[0] / all : 0.0,
-                all ? 100.0 * (double)u[1] / all : 0.0, all ? 100.0 * (double)u[2] / all : 0.0);
-  }
-  std::printf("\n");
 }
 
 Draw scene_draw(const fxr::Scene& sc, const std::string& name) {
@@ -85,12 +50,8 @@ TEST(Unit, DefaultSceneMatchesTheModel) {
 }
 
 TEST(Unit, SceneFilesMatchTheModel) {
-  std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(FXR_SOURCE_DIR) + "/scenes"))
-    if (e.path().extension() == ".json") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
   int n = 0;
-  for (const auto& p : files) {
+  for (const auto& p : fxr::tb::scene_files()) {
     const fxr::Scene sc = fxr::load_scene(p.string());
     if (sc.tris.empty()) continue;
     const std::string name = "unit_" + p.stem().string();
@@ -174,6 +135,24 @@ void random_draws(int draws, int per_draw, int clip_every, uint64_t min_prims, u
 TEST(Unit, RandomClipSpaceTrianglesMatchTheModel) { random_draws(2, 5000, kClipEvery, 10000, 100); }
 
 TEST(Unit, DISABLED_HeavyClipping) { random_draws(2, 5000, 1, 10000, 8000); }
+
+// Clipped primitives whose pieces end differently (tests/model/piece_cases.hpp): the near-plane
+// primitive has a drawn piece and a piece right of the viewport with no samples (the per setup
+// triangle counters, RasterStats::tris, against the unit's tri_*); at the default configuration
+// every piece of the through-the-eye primitive goes on (its per-piece rejection needs a narrower
+// reciprocal range, recip.exp_bits < 9). With gaps and back-pressure.
+TEST(Unit, ClippedPiecesWithDifferentOutcomesMatchTheModel) {
+  const Draw d = fxr::tb::model_draw("unit_pieces", fxr::Config{}, fxr::piece_cases::state(),
+                                     {fxr::piece_cases::through_the_eye(), fxr::piece_cases::near_into_the_band()});
+  ASSERT_EQ(d.stats.prims_clipped, 2u);
+  ASSERT_EQ(d.stats.tris.no_samples, 1u);
+  ASSERT_GE(d.stats.tris.drawn, 2u);
+  ASSERT_EQ(d.stats.tris.geom_rejected_range, 0u);
+  for (const Handshake& h : {Handshake{7, 0, 0, 1, 1, 0}, Handshake{8, 30, 30, 1, 5, 10}}) {
+    const UnitRun a = run(d, d.u, h, "unit_pieces_" + std::to_string(h.seed), false);
+    expect_match(d, a, "pieces, seed " + std::to_string(h.seed));
+  }
+}
 
 // The checker can fail: one bit of the depth code of fragment 30 flipped in the expectation.
 TEST(Unit, CorruptedExpectedFragmentIsReported) {
