@@ -140,7 +140,7 @@ TEST(Unit, DISABLED_HeavyClipping) { random_draws(2, 5000, 1, 10000, 8000); }
 // primitive has a drawn piece and a piece right of the viewport with no samples (the per setup
 // triangle counters, RasterStats::tris, against the unit's tri_*); at the default configuration
 // every piece of the through-the-eye primitive goes on (its per-piece rejection needs a narrower
-// reciprocal range, recip.exp_bits < 9). With gaps and back-pressure.
+// reciprocal range: tb/variants/unit/recip_exp8.json). With gaps and back-pressure.
 TEST(Unit, ClippedPiecesWithDifferentOutcomesMatchTheModel) {
   const Draw d = fxr::tb::model_draw("unit_pieces", fxr::Config{}, fxr::piece_cases::state(),
                                      {fxr::piece_cases::through_the_eye(), fxr::piece_cases::near_into_the_band()});
