@@ -5,11 +5,14 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <thread>
 
 #include "analysis/budget.hpp"
 #include "analysis/error_stats.hpp"
+#include "analysis/lut_model.hpp"
+#include "analysis/scene_analysis.hpp"
 #include "model/config/validate.hpp"
 #include "model/stages/attr.hpp"
 #include "model/stages/clip.hpp"
@@ -92,7 +95,7 @@ struct Wide {
 } const kWide;
 }  // namespace
 
-std::vector<PlanDimension> plan_dimensions(const Config& c) {
+std::vector<PlanDimension> plan_dimensions(const Config& c, int min_depth_bits) {
   std::vector<PlanDimension> d;
   auto ladder = [](int lo, int hi) {
     std::vector<int> v;
@@ -118,7 +121,7 @@ std::vector<PlanDimension> plan_dimensions(const Config& c) {
                [](Config& k, int v) { k.raster.varying_out_sig_bits = v; }});
   d.push_back({"raster.clip_sig_bits", ladder(16, std::max(r.clip_sig_bits, kWide.clip_sig_bits)), [](const Config& k) { return k.raster.clip_sig_bits; },
                [](Config& k, int v) { k.raster.clip_sig_bits = v; }});
-  d.push_back({"raster.depth_format (bits)", {16, 24}, [](const Config& k) { return k.raster.depth_bits(); },
+  d.push_back({"raster.depth_format (bits)", min_depth_bits > 16 ? std::vector<int>{24} : std::vector<int>{16, 24}, [](const Config& k) { return k.raster.depth_bits(); },
                [](Config& k, int v) { k.raster.depth_format = v == 16 ? DepthFormat::D16 : DepthFormat::D24; }});
   d.push_back({"div.algorithm (0 radix2, 1 shared_recip)", {1, 0},
                [](const Config& k) { return k.div.algorithm == DivAlgorithm::SharedRecip ? 1 : 0; },
@@ -126,12 +129,21 @@ std::vector<PlanDimension> plan_dimensions(const Config& c) {
   return d;
 }
 
-int64_t plan_cost(const Config& c, int nv, PlanCost k) {
-  const StageCost s[] = {ConvertStage::cost(c), ClipStage::cost(c),      RecipStage::cost(c),
-                         ViewportStage::cost(c), SetupStage::cost(c),     TraverseStage::cost(c),
-                         InterpStage::cost(c),   DepthStage::cost(c),     divide_cost(c, std::max(nv, 1), std::max(nv, 1))};
+const char* plan_cost_name(PlanCost k) {
+  return k == PlanCost::Area ? "area_proxy+ff_bits" : k == PlanCost::Luts ? "lut4_model" : "clocks_per_frame";
+}
+
+int64_t plan_cost(const Config& c, int nv, PlanCost k, const LutModel* luts) {
+  if (k == PlanCost::Cycles) throw ConfigError("plan_cost: clocks per frame need the scenes (PlanOptions::frame_clocks)");
+  if (k == PlanCost::Luts) {
+    if (!luts) throw ConfigError("plan_cost: --cost luts needs the LUT4 model (analysis/lut_table.json)");
+    return lut_model_total(*luts, c, nv);
+  }
+  // Area: the stages' logic (tables, partial products, adders) and their registers. Registers
+  // count because the depth format is mostly register and memory width: without them D16 came
+  // out dearer than D24 (docs/reports.md, "Planner").
   int64_t t = 0;
-  for (const StageCost& x : s) t += k == PlanCost::Area ? x.area_proxy() : x.latency;
+  for (const StageCost& x : unit_stage_costs(c, nv)) t += x.area_proxy() + x.ff_bits;
   return t;
 }
 
@@ -145,8 +157,40 @@ std::string label_of(const std::vector<PlanDimension>& dims, const Config& c) {
 
 using Extras = std::vector<std::vector<uint64_t>>;  // per scene: output indices sampled in addition
 
+// Clocks per frame, cached per configuration label and scene (the cycle model is deterministic:
+// the same configuration gives the same clocks, so a cache hit never changes a result).
+struct ClockCache {
+  std::mutex m;
+  std::map<std::pair<std::string, size_t>, uint64_t> clocks;
+};
+
+int64_t eval_cost(const std::vector<Scene>& scenes, const Config& c, const std::string& label, int nv,
+                  const PlanOptions& o, ClockCache* cache) {
+  if (o.cost != PlanCost::Cycles) return plan_cost(c, nv, o.cost, o.luts);
+  if (!o.frame_clocks) throw ConfigError("--cost cycles: no cycle model was given to the planner");
+  int64_t t = 0;
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    const auto key = std::make_pair(label, i);
+    {
+      std::lock_guard<std::mutex> g(cache->m);
+      if (auto it = cache->clocks.find(key); it != cache->clocks.end()) {
+        t += (int64_t)it->second;
+        continue;
+      }
+    }
+    const uint64_t k = o.frame_clocks(c, scenes[i]);
+    {
+      std::lock_guard<std::mutex> g(cache->m);
+      cache->clocks[key] = k;
+    }
+    t += (int64_t)k;
+  }
+  return t;
+}
+
 PlanEval evaluate(const std::vector<Scene>& scenes, const Config& c, const std::vector<PlanDimension>& dims,
-                  const PlanOptions& o, const Extras& extras, std::vector<std::vector<uint64_t>>* violating = nullptr) {
+                  const PlanOptions& o, const Extras& extras, ClockCache* cache,
+                  std::vector<std::vector<uint64_t>>* violating = nullptr) {
   PlanEval e;
   e.cfg = c;
   e.label = label_of(dims, c);
@@ -162,7 +206,7 @@ PlanEval evaluate(const std::vector<Scene>& scenes, const Config& c, const std::
     e.valid = false;
     return e;
   }
-  e.cost = plan_cost(e.cfg, nv, o.cost);
+  e.cost = eval_cost(scenes, e.cfg, e.label, nv, o, cache);
   double frags = 0, secs = 0;
   for (const Scene& s0 : scenes) {
     Scene s = s0;
@@ -233,8 +277,17 @@ constexpr size_t kMaxExtraPerRound = 2000;
 
 PlanResult run_plan(const std::vector<Scene>& scenes, const PlanOptions& o) {
   PlanResult R;
-  for (const Scene& s : scenes) R.scenes.push_back(s.name);
-  const std::vector<PlanDimension> dims = plan_dimensions(scenes.front().config);
+  for (const Scene& s : scenes) R.scenes.push_back(s.name), R.num_varyings = std::max(R.num_varyings, s.state.num_varyings);
+  // The depth-format floor: the narrowest format that still separates the overlapping surfaces
+  // of every scene (fxraster analyze; −1, coplanar or intersecting surfaces: no format separates
+  // them, counted as the widest).
+  if (o.depth_floor_from_analysis) {
+    for (const Scene& s : scenes)
+      for (const MinWidth& w : analyze_scene(s).widths)
+        if (w.field == "raster.depth_format") R.min_depth_bits = std::max(R.min_depth_bits, w.min < 0 ? 24 : w.min);
+  }
+  const std::vector<PlanDimension> dims = plan_dimensions(scenes.front().config, R.min_depth_bits);
+  ClockCache cache;
   std::map<std::string, size_t> seen;  // label → index in R.evaluated
   Extras extras(scenes.size());
   auto eval_batch = [&](const std::vector<Config>& cs) {
@@ -252,7 +305,7 @@ PlanResult run_plan(const std::vector<Scene>& scenes, const PlanOptions& o) {
     for (size_t t = 0; t < T; ++t)
       th.emplace_back([&, t] {
         try {
-          for (size_t j = t; j < todo.size(); j += T) fresh[todo[j]] = evaluate(scenes, cs[todo[j]], dims, o, extras);
+          for (size_t j = t; j < todo.size(); j += T) fresh[todo[j]] = evaluate(scenes, cs[todo[j]], dims, o, extras, &cache);
         } catch (const std::exception& e) {
           errors[t] = e.what();
         }
@@ -271,6 +324,41 @@ PlanResult run_plan(const std::vector<Scene>& scenes, const PlanOptions& o) {
     std::vector<PlanEval> out;
     for (size_t i : idx) out.push_back(R.evaluated[i]);
     return out;
+  };
+  // Whether some value of `d` narrower than index `at` costs less than `b` (the values up to the
+  // first configuration validate() refuses, where the narrowing would stop).
+  auto cost_falls = [&](const PlanDimension& d, const PlanEval& b, long at) {
+    std::vector<Config> cs;
+    for (long i = at - 1; i >= 0; --i) {
+      Config c = b.cfg;
+      d.set(c, d.values[(size_t)i]);
+      derive_widths(c);
+      try {
+        validate(c, "plan");
+        check_attr_widths(c);
+      } catch (const ConfigError&) {
+        break;
+      }
+      cs.push_back(c);
+    }
+    std::vector<int64_t> cost(cs.size(), 0);
+    const size_t T = (size_t)std::max(1, o.threads);
+    std::vector<std::string> errors(T);
+    std::vector<std::thread> th;
+    for (size_t t = 0; t < T; ++t)
+      th.emplace_back([&, t] {
+        try {
+          for (size_t j = t; j < cs.size(); j += T) cost[j] = eval_cost(scenes, cs[j], label_of(dims, cs[j]), R.num_varyings, o, &cache);
+        } catch (const std::exception& e) {
+          errors[t] = e.what();
+        }
+      });
+    for (auto& x : th) x.join();
+    for (const std::string& e : errors)
+      if (!e.empty()) throw ConfigError(e);
+    for (int64_t k : cost)
+      if (k < b.cost) return true;
+    return false;
   };
   Config cur = scenes.front().config;
   derive_widths(cur);
@@ -304,6 +392,10 @@ PlanResult run_plan(const std::vector<Scene>& scenes, const PlanOptions& o) {
       const int v = d.get(best.cfg);
       const auto pos = std::find(d.values.begin(), d.values.end(), v);
       if (pos == d.values.end()) continue;
+      // Skip the dimension when no narrower value (down to the first invalid one) costs less than
+      // the current choice: the search below could not change it. Only the cost is computed —
+      // for --cost cycles a cycle-model run per value, in parallel — not the error.
+      if (!cost_falls(d, best, pos - d.values.begin())) continue;
       // Narrower values from the current one down, in fixed batches, until one misses.
       PlanEval pick = best;
       for (long i = (long)(pos - d.values.begin()) - 1; i >= 0;) {
@@ -331,7 +423,7 @@ PlanResult run_plan(const std::vector<Scene>& scenes, const PlanOptions& o) {
   }
   // Verification on every fragment of every scene.
   std::vector<std::vector<uint64_t>> bad(scenes.size());
-  R.verified = evaluate(scenes, best.cfg, dims, o, extras, &bad);
+  R.verified = evaluate(scenes, best.cfg, dims, o, extras, &cache, &bad);
   size_t nbad = 0;
   for (size_t i = 0; i < scenes.size(); ++i) {
     nbad += bad[i].size();
@@ -380,8 +472,6 @@ PlanResult run_plan(const std::vector<Scene>& scenes, const PlanOptions& o) {
 
 namespace {
 
-const char* cost_name(PlanCost k) { return k == PlanCost::Area ? "area_proxy" : "latency_cycles"; }
-
 // Pareto front of (cost, ratio) over the valid evaluations, by increasing cost.
 std::vector<size_t> pareto(const PlanResult& r) {
   std::vector<size_t> idx;
@@ -403,7 +493,8 @@ std::vector<size_t> pareto(const PlanResult& r) {
 nlohmann::json plan_json(const PlanResult& r, const PlanOptions& o) {
   nlohmann::json j;
   j["scenes"] = r.scenes;
-  j["cost"] = cost_name(o.cost);
+  j["cost"] = plan_cost_name(o.cost);
+  j["min_depth_bits"] = r.min_depth_bits;
   for (const PlanLimit& L : o.target) j["target"].push_back({{"output", L.output}, {"unit", L.unit}, {"max", L.max}});
   auto ev = [&](const PlanEval& e) {
     nlohmann::json x = {{"label", e.label}, {"cost", e.cost}, {"meets", e.meets}, {"ratio", e.ratio}};
@@ -425,13 +516,18 @@ nlohmann::json plan_json(const PlanResult& r, const PlanOptions& o) {
 
 std::string plan_markdown(const PlanResult& r, const PlanOptions& o, const std::vector<std::string>& images) {
   std::ostringstream m;
-  const std::vector<PlanDimension> dims = plan_dimensions(r.start.cfg);
+  const std::vector<PlanDimension> dims = plan_dimensions(r.start.cfg, r.min_depth_bits);
   m << "# Plan\n\nScenes: ";
   for (size_t i = 0; i < r.scenes.size(); ++i) m << (i ? ", " : "") << r.scenes[i];
   m << ". Target: ";
   for (size_t i = 0; i < o.target.size(); ++i) m << (i ? "; " : "") << o.target[i].output << " ≤ " << fmt_num(o.target[i].max) << " " << o.target[i].unit;
   m << " (against the exact unsnapped value; " << o.samples << " sampled fragments per scene and configuration). Cost: `"
-    << cost_name(o.cost) << "` (Σ of the stages' cost() functions). How to read it: docs/reports.md, \"Planner\".\n\n";
+    << plan_cost_name(o.cost) << "` ("
+    << (o.cost == PlanCost::Area   ? "Σ of the stages' cost() functions: logic bits and register bits"
+        : o.cost == PlanCost::Luts ? "the LUT4 model calibrated to the Yosys figures, analysis/lut_table.json"
+                                   : "clocks per frame of the cycle model, summed over the scenes")
+    << "). Depth formats searched: D" << r.min_depth_bits << " and wider (the scenes' overlapping surfaces, fxraster analyze). "
+    << "How to read it: docs/reports.md, \"Planner\".\n\n";
   m << "| | cost | ratio to target | meets |";
   for (const PlanLimit& L : o.target) m << " " << L.output << " (" << L.unit << ") |";
   m << " model M frag/s |\n|---|---|---|---|";
@@ -465,6 +561,7 @@ std::string plan_markdown(const PlanResult& r, const PlanOptions& o, const std::
       << fmt_num(e.mfrags_per_s) << " |\n";
   }
   m << "\nModel speed is measured in this run (the only column that is not reproducible; never in plan.json / pareto.csv).\n";
+  if (o.cost == PlanCost::Luts && o.luts) m << lut_model_markdown(*o.luts, r.start.cfg, r.chosen.cfg, r.num_varyings);
   if (!images.empty()) {
     m << "\n## Plots\n\n";
     for (const std::string& im : images) m << "![" << im << "](" << im << ")\n\n";

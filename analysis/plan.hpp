@@ -40,12 +40,20 @@ struct PlanDimension {
 };
 // Contract: the dimensions for configuration `c` (fixed: subpixel_bits, window_int_bits and the
 // recip unit — coverage and the guard band are not error-budget questions; docs/reports.md).
-std::vector<PlanDimension> plan_dimensions(const Config& c);
+// `min_depth_bits`: the narrowest depth format searched (16 or 24).
+std::vector<PlanDimension> plan_dimensions(const Config& c, int min_depth_bits = 16);
 
-enum class PlanCost { Area, Cycles };
-// Contract: the unit's cost at `c` for `num_varyings`: Σ area_proxy or Σ latency of the stages'
-// cost() functions (stages 1–9, divide_cost with one lane per varying).
-int64_t plan_cost(const Config& c, int num_varyings, PlanCost k);
+// What the search minimises (docs/reports.md, "Planner", "Cost"):
+//   Area    Σ over stages 1–9 of area_proxy() + ff_bits of the stages' cost() functions
+//   Luts    the LUT4 cost model (analysis/lut_model.hpp) calibrated to the Yosys figures
+//   Cycles  clocks per frame from the cycle model, summed over the scenes (PlanOptions::frame_clocks)
+enum class PlanCost { Area, Luts, Cycles };
+const char* plan_cost_name(PlanCost k);
+
+struct LutModel;
+// Contract: the unit's cost at `c` for `num_varyings` for Area (divide_cost with one lane per
+// varying) and Luts (`luts` required); ConfigError for Cycles (it needs the scenes).
+int64_t plan_cost(const Config& c, int num_varyings, PlanCost k, const LutModel* luts = nullptr);
 
 struct PlanEval {
   Config cfg;
@@ -64,6 +72,15 @@ struct PlanOptions {
   int samples = 1000;   // per scene and configuration
   int threads = 1;
   std::function<void(const std::string&)> progress;
+  // PlanCost::Cycles: clocks per frame of `scene` drawn at `cfg` (app/cmd_plan.cpp and the sc
+  // tests pass sc/frame_clocks.hpp's unit_frame_clocks; fxr_analysis does not link SystemC).
+  // Called from several threads at once; results are cached per configuration and scene.
+  std::function<uint64_t(const Config& cfg, const Scene& scene)> frame_clocks;
+  const LutModel* luts = nullptr;  // PlanCost::Luts
+  // Depth formats below what the scenes' overlapping surfaces need (fxraster analyze,
+  // analysis/scene_analysis.hpp) are left out of the search: the error target does not see
+  // visibility. false: search D16 and D24 regardless (tests of the cost ordering).
+  bool depth_floor_from_analysis = true;
 };
 
 struct MinimalityRow {
@@ -83,6 +100,8 @@ struct PlanResult {
   std::vector<PlanEval> evaluated;  // every distinct configuration, in evaluation order
   std::vector<MinimalityRow> minimality;
   std::vector<std::string> scenes;
+  int min_depth_bits = 16;  // the depth-format floor the search used (from the analysis)
+  int num_varyings = 1;     // the most of any scene (the divider's lanes)
 };
 
 // Contract: the plan for `scenes` (each with its own draw state; the configuration of the

@@ -1,4 +1,4 @@
-// `fxraster plan SCENE... [--default] --target SPEC [--cost area|cycles] --out DIR`: the cheapest
+// `fxraster plan SCENE... [--default] --target SPEC [--cost area|luts|cycles] --out DIR`: the cheapest
 // configuration that meets an error target on every scene (analysis/plan.hpp; docs/reports.md,
 // "Planner"). Writes plan.md, plan.json, plan_config.json (for `fxraster config --config F
 // --emit-sv`), pareto.csv (reproducible), pareto_speed.csv (with the measured model speed) and,
@@ -9,15 +9,17 @@
 #include <iostream>
 #include <thread>
 
+#include "analysis/lut_model.hpp"
 #include "analysis/plan.hpp"
 #include "command.hpp"
 #include "model/config/config.hpp"
+#include "sc/frame_clocks.hpp"
 
 namespace {
 
 struct Opts {
   std::vector<std::string> scenes;
-  std::string out, config, target, cost = "area";
+  std::string out, config, target, cost = "area", lut_table;
   bool use_default = false, no_bunny = false, no_plots = false, quiet = false;
   int width = 0, height = 0, samples = 1000, threads = 0;
 };
@@ -30,9 +32,6 @@ std::string quote(const std::string& s) {
 
 int run(const Opts& o) {
   if (o.scenes.empty() && !o.use_default) throw fxr::ConfigError("give at least one SCENE or --default");
-  if (o.cost == "luts")
-    throw fxr::ConfigError("--cost luts: Yosys LUT4 figures exist for a few modules at the default configuration only "
-                           "(docs/rtl.md), not per configuration; use --cost area (the stages' area proxy) or cycles");
   fxr::SceneOptions so;
   so.width = o.width;
   so.height = o.height;
@@ -45,7 +44,17 @@ int run(const Opts& o) {
   for (fxr::Scene& s : scenes) s.config = scenes.front().config;  // one configuration for every scene
   fxr::PlanOptions po;
   po.target = fxr::parse_plan_target(o.target);
-  po.cost = o.cost == "cycles" ? fxr::PlanCost::Cycles : fxr::PlanCost::Area;
+  po.cost = o.cost == "cycles" ? fxr::PlanCost::Cycles : o.cost == "luts" ? fxr::PlanCost::Luts : fxr::PlanCost::Area;
+  fxr::LutModel luts;
+  if (po.cost == fxr::PlanCost::Luts) {
+    luts = fxr::load_lut_model(o.lut_table.empty() ? std::string(FXR_SOURCE_DIR) + "/analysis/lut_table.json" : o.lut_table);
+    po.luts = &luts;
+  }
+  // Clocks per frame: the cycle model of `fxraster cycles` (default architecture knobs), each run in
+  // a child process (sc/frame_clocks.hpp).
+  po.frame_clocks = [](const fxr::Config& c, const fxr::Scene& s) {
+    return fxr::cyc::unit_frame_clocks(c, fxr::ArchConfig{}, s.state, s.tris);
+  };
   po.samples = o.samples;
   po.threads = o.threads > 0 ? o.threads : (int)std::max(1u, std::thread::hardware_concurrency());
   if (!o.quiet) po.progress = [](const std::string& s) { std::cerr << "[plan] " << s << "\n"; };
@@ -57,7 +66,7 @@ int run(const Opts& o) {
   if (!o.no_plots) {
     const std::string cmd = quote(FXR_PYTHON) + " " + quote(std::string(FXR_SOURCE_DIR) + "/scripts/plot_plan.py") +
                             " --csv " + quote(o.out + "/pareto_speed.csv") + " --out " + quote(o.out) + " --cost " +
-                            (po.cost == fxr::PlanCost::Area ? "area_proxy" : "latency_cycles");
+                            fxr::plan_cost_name(po.cost);
     const int rc = std::system(cmd.c_str());
     if (rc == 0) images = {"error_vs_cost.png", "error_vs_speed.png"};
     else std::cerr << "fxraster plan: warning: plots skipped (scripts/plot_plan.py exit " << rc << "; matplotlib?)\n";
@@ -85,9 +94,13 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_option("--target", o->target,
                  "error target, e.g. 'u,v <= 1/16 texel; depth <= 1 LSB; image pixels differing from the exact image <= 0'")
       ->required();
-  sub.add_option("--cost", o->cost, "what to minimise: area (Σ area proxy of the stages) or cycles (Σ latency)")
+  sub.add_option("--cost", o->cost,
+                 "what to minimise: area (Σ logic and register bits of the stages' cost functions), luts (the LUT4 "
+                 "model calibrated to Yosys, analysis/lut_table.json) or cycles (clocks per frame of the cycle model, "
+                 "summed over the scenes)")
       ->check(CLI::IsMember({"area", "cycles", "luts"}));
   sub.add_option("--config", o->config, "starting configuration JSON (default: the first scene's)");
+  sub.add_option("--lut-table", o->lut_table, "the LUT4 table of --cost luts (default: analysis/lut_table.json of the source tree)");
   sub.add_option("--out", o->out, "output directory")->required();
   sub.add_option("--samples", o->samples, "fragments per scene and configuration (default 1000)")->check(CLI::Range(1, 10000000));
   sub.add_option("--threads", o->threads, "configurations evaluated in parallel (the result does not depend on it)")
