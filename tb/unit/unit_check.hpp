@@ -53,10 +53,10 @@ inline void print_figures(const Draw& d, const UnitRun& k) {
               d.name.c_str(), (unsigned long long)d.u.in.rows, (unsigned long long)d.want[7],
               (unsigned long long)d.want[8], (unsigned long long)cyc, cyc ? (double)d.want[7] / (double)cyc : 0.0,
               r.seconds > 0 ? (double)r.cycles / r.seconds : 0.0);
-  std::printf("FIGURES unit %s: utilisation (busy / stalled / starved %% of %llu clocks):", d.name.c_str(),
-              (unsigned long long)r.cycles);
+  std::printf("FIGURES unit %s: utilisation (busy / stalled / starved %% of the clocks first input to last output):",
+              d.name.c_str());
   for (int i = 0; i < kUnitStages; ++i) {
-    const auto& u = k.util[(size_t)i];
+    const auto& u = k.util_window[(size_t)i];
     const double all = (double)(u[0] + u[1] + u[2]);
     std::printf(" %s %.1f/%.1f/%.1f", kUnitStageNames[i], all ? 100.0 * (double)u[0] / all : 0.0,
                 all ? 100.0 * (double)u[1] / all : 0.0, all ? 100.0 * (double)u[2] / all : 0.0);

@@ -42,7 +42,10 @@ inline const char* const kUnitStageNames[kUnitStages] = {"input", "clip", "recip
 struct UnitRun {
   RtlRun k;
   GeomStats geom{};
-  std::array<std::array<uint64_t, 3>, kUnitStages> util{};  // busy, stalled, starved
+  std::array<std::array<uint64_t, 3>, kUnitStages> util{};  // busy, stalled, starved (whole run)
+  // The same counters over the clocks from the first input transfer to the last output transfer
+  // (without the reset, the register writes and the 20,000-clock drain: the cycle figure's window).
+  std::array<std::array<uint64_t, 3>, kUnitStages> util_window{};
 };
 
 template <class T>
@@ -67,6 +70,9 @@ UnitRun run_unit(const Draw& d, const SceneStageVectors& v, const Handshake& h, 
   const std::array<int64_t, kUnitRegs> regs = unit_registers(d.st, d.st.num_varyings);
   const uint64_t reg_mask = (uint64_t(1) << (v.cfg.raster.window_int_bits + 1)) - 1;
   uint64_t cycle = 0;
+  // Registered counters: read in a clock, they hold the clocks before it.
+  bool started = false, prev_out = false;
+  std::array<std::array<uint64_t, 3>, kUnitStages> util_first{}, util_last{};
   TxnHook<Dut> hook;
   hook.reset = [&] {
     mem.reset();
@@ -74,6 +80,8 @@ UnitRun run_unit(const Draw& d, const SceneStageVectors& v, const Handshake& h, 
     out.k.perf = Perf{};
     out.geom = GeomStats{};
     cycle = 0;
+    started = prev_out = false;
+    util_first = util_last = {};
     if (ro.reset) ro.reset();
   };
   hook.drive = [&](Dut& dut) {
@@ -101,6 +109,12 @@ UnitRun run_unit(const Draw& d, const SceneStageVectors& v, const Handshake& h, 
     for (int i = 0; i < kUnitStages; ++i)
       out.util[(size_t)i] = {flat_word(dut.perf_busy_o, i, stat_bits), flat_word(dut.perf_stalled_o, i, stat_bits),
                              flat_word(dut.perf_starved_o, i, stat_bits)};
+    if (!started && dut.in_valid_i && dut.in_ready_o) {
+      started = true;
+      util_first = out.util;
+    }
+    if (prev_out) util_last = out.util;
+    prev_out = dut.out_valid_o && dut.out_ready_i;
     if (ro.observe) ro.observe(dut);
   };
   TxnOptions o = txn_options("unit", ro.run, h.seed, h.gap, h.stall);
@@ -111,6 +125,8 @@ UnitRun run_unit(const Draw& d, const SceneStageVectors& v, const Handshake& h, 
   o.drain_cycles = 20000;
   o.input_delay_cycles = kUnitRegs + 1;
   out.k.r = ro.simulate ? ro.simulate(v, o, hook) : run_txn<Dut>(v, nullptr, o, &hook);
+  for (int i = 0; i < kUnitStages; ++i)
+    for (int j = 0; j < 3; ++j) out.util_window[(size_t)i][(size_t)j] = util_last[(size_t)i][(size_t)j] - util_first[(size_t)i][(size_t)j];
   out.k.depth = mem.words();
   out.k.bad_addresses = mem.bad_addresses;
   return out;
