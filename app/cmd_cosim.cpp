@@ -16,7 +16,7 @@
 
 #include "command.hpp"
 
-namespace {
+namespace fxr::app {
 
 std::string cosim_binary() {
   if (const char* e = std::getenv("FXRASTER_COSIM")) return e;
@@ -29,36 +29,42 @@ std::string cosim_binary() {
   return FXR_COSIM_BINARY;
 }
 
+int run_cosim(const std::vector<std::string>& arguments) {
+  const std::string bin = cosim_binary();
+  if (!std::filesystem::exists(bin)) {
+    std::cerr << "fxraster: error: " << bin
+              << ": the co-simulation executable is not built (cmake --build build builds it; or set FXRASTER_COSIM)\n";
+    return 2;
+  }
+  std::vector<std::string> args = {bin};
+  for (const std::string& a : arguments) args.push_back(a);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::cout.flush();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    std::cerr << "fxraster: error: fork failed\n";
+    return 1;
+  }
+  if (pid == 0) {
+    execv(bin.c_str(), argv.data());
+    std::perror(("fxraster: " + bin).c_str());
+    _exit(127);
+  }
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) return 1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+}  // namespace fxr::app
+
+namespace {
+
 fxr::app::Runner setup(CLI::App& sub) {
   sub.prefix_command();   // every argument goes to fxraster-cosim
   sub.set_help_flag();    // --help too
-  return [&sub]() -> int {
-    const std::string bin = cosim_binary();
-    if (!std::filesystem::exists(bin)) {
-      std::cerr << "fxraster cosim: error: " << bin
-                << ": the co-simulation executable is not built (cmake --build build builds it; or set FXRASTER_COSIM)\n";
-      return 2;
-    }
-    std::vector<std::string> args = {bin};
-    for (const std::string& a : sub.remaining()) args.push_back(a);
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    std::cout.flush();
-    const pid_t pid = fork();
-    if (pid < 0) {
-      std::cerr << "fxraster cosim: error: fork failed\n";
-      return 1;
-    }
-    if (pid == 0) {
-      execv(bin.c_str(), argv.data());
-      std::perror(("fxraster cosim: " + bin).c_str());
-      _exit(127);
-    }
-    int status = 0;
-    if (waitpid(pid, &status, 0) < 0) return 1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
-  };
+  return [&sub]() -> int { return fxr::app::run_cosim(sub.remaining()); };
 }
 
 fxr::app::Registrar reg("cosim",

@@ -5,6 +5,9 @@
 // architecture knobs (ArchConfig, the unit "arch" of a configuration file).
 //
 // Writes DIR/cycles.json, DIR/report.md, DIR/timeline.csv, DIR/sweep.csv and DIR/timeline.png.
+// --rtl: the same scene through the RTL unit too (`fxraster cosim` into DIR/rtl: the whole unit
+// under Verilator, every stage boundary compared with the model), its clocks and wall clock
+// beside the model's — the deviation and the speed ratio measured in the same run.
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -26,7 +29,7 @@ using fxr::cyc::CycleRun;
 
 struct Opts {
   std::string scene, config, out;
-  bool use_default = false, no_sweep = false, no_plot = false, quiet = false, no_bunny = false;
+  bool use_default = false, no_sweep = false, no_plot = false, quiet = false, no_bunny = false, rtl = false;
   int width = 0, height = 0;
   int bins = 200;
 };
@@ -131,6 +134,11 @@ std::vector<Variant> sweep_variants(const fxr::ArchConfig& base) {
     a.depth_queue_depth = 16;
   });
   add("depth_write_port 0", [](fxr::ArchConfig& a) { a.depth_write_port = 0; });
+  add("viewport_lanes 6", [](fxr::ArchConfig& a) { a.viewport_lanes = 6; });
+  add("interp_div_steps 8, viewport_lanes 6", [](fxr::ArchConfig& a) {
+    a.interp_div_steps = 8;
+    a.viewport_lanes = 6;
+  });
   return v;
 }
 
@@ -138,6 +146,9 @@ int run(const Opts& o) {
   if (o.use_default == !o.scene.empty())
     throw fxr::ConfigError("cycles: give exactly one of SCENE and --default");
   if (o.bins < 1 || o.bins > 100000) throw fxr::ConfigError("cycles: --bins: " + std::to_string(o.bins) + " is not in 1 … 100000");
+  // The RTL runs at its own parameters on the scene as it is: nothing that changes them.
+  if (o.rtl && (!o.config.empty() || o.width || o.height || o.no_bunny))
+    throw fxr::ConfigError("cycles: --rtl runs the scene as fxraster cosim does: not with --config, --width, --height or --no-bunny");
   fxr::SceneOptions so;
   so.width = o.width;
   so.height = o.height;
@@ -153,6 +164,25 @@ int run(const Opts& o) {
   const CycleRun r = fxr::cyc::run_unit_cycles(sc.config, arch, sc.state, sc.tris, f, nullptr, opt);
   write_timeline(r, o.bins, o.out + "/timeline.csv");
 
+  // The RTL on the same scene (fxraster cosim: exit 0 match, 1 mismatch, 2 bad input).
+  nlohmann::json rtl;
+  if (o.rtl) {
+    const std::string dir = o.out + "/rtl";
+    std::vector<std::string> args = {o.use_default ? std::string("--default") : o.scene, "--out", dir};
+    const int rc = fxr::app::run_cosim(args);
+    if (rc != 0) throw std::runtime_error("cycles --rtl: fxraster cosim exited " + std::to_string(rc) + " (" + dir + "/report.md)");
+    const nlohmann::json rep = fxr::read_json_file(dir + "/report.json", "cosim report");
+    const nlohmann::json sp = fxr::read_json_file(dir + "/speed.json", "cosim speed");
+    const uint64_t clocks = rep.at("cycles").at("first_input_to_last_output").get<uint64_t>();
+    const double secs = sp.at("rtl_seconds").get<double>();
+    rtl = {{"clocks", clocks},
+           {"seconds", secs},
+           {"deviation", clocks ? ((double)r.clocks - (double)clocks) / (double)clocks : 0.0},
+           {"systemc_seconds", r.seconds},
+           {"speed_ratio", r.seconds > 0 ? secs / r.seconds : 0.0},
+           {"report", "rtl/report.md"}};
+  }
+
   std::vector<std::pair<Variant, CycleRun>> sweep;
   if (!o.no_sweep)
     for (const Variant& v : sweep_variants(arch)) {
@@ -164,6 +194,7 @@ int run(const Opts& o) {
   j["scene"] = sc.source;
   j["arch"] = fxr::arch_to_json(arch);
   j["run"] = run_json(r);
+  if (o.rtl) j["rtl"] = rtl;
   nlohmann::json sj = nlohmann::json::array();
   for (const auto& [v, s] : sweep)
     sj.push_back({{"variant", v.label}, {"arch", fxr::arch_to_json(v.arch)}, {"clocks", s.clocks},
@@ -192,8 +223,8 @@ int run(const Opts& o) {
 
   std::ostringstream md;
   md << "# Cycles: " << sc.source << "\n\n"
-     << "The cycle-approximate SystemC model (docs/cycles.md) of the raster unit on this scene: stages 1–4 as one "
-        "geometry module, then setup, traversal, the interpolators (front: span start; back: one sample per clock), "
+     << "The cycle-approximate SystemC model (docs/cycles.md) of the raster unit on this scene: input, clip, recip "
+        "and viewport (stages 1–4), then setup, traversal, the interpolators (front: span start; back: one sample per clock), "
         "depth and divide, one triangle offered per clock. Clocks from the first primitive in to the last fragment "
         "out.\n\n"
      << "| | value |\n|---|---|\n"
@@ -203,7 +234,14 @@ int run(const Opts& o) {
      << std::fixed << std::setprecision(4) << "| triangles per clock | " << per(r.triangles, r.clocks) << " |\n"
      << "| fragments per clock (generated) | " << per(r.samples, r.clocks) << " |\n"
      << "| bottleneck (most busy clocks) | **" << fxr::cyc::stage_name(r.bottleneck()) << "** |\n"
-     << std::setprecision(3) << "| simulation wall clock | " << r.seconds << " s |\n\n"
+     << std::setprecision(3) << "| simulation wall clock | " << r.seconds << " s |\n";
+  if (o.rtl)
+    md << "| RTL clocks (fxraster cosim, the unit under Verilator: `rtl/report.md`) | " << rtl["clocks"].get<uint64_t>()
+       << " |\n| deviation SystemC − RTL | " << std::showpos << std::setprecision(2)
+       << 100.0 * rtl["deviation"].get<double>() << std::noshowpos << " % |\n| RTL wall clock (stage taps compared) | "
+       << std::setprecision(3) << rtl["seconds"].get<double>() << " s |\n| **speed ratio RTL / SystemC** | **"
+       << std::setprecision(1) << rtl["speed_ratio"].get<double>() << "×** |\n";
+  md << "\n"
      << "## Stages\n\nbusy: working on a transaction; stalled: holding a result the next stage does not take; "
         "starved: waiting for input (the rest of the frame).\n\n"
      << "| stage | in | out | busy | stalled | starved | busy % |\n|---|---|---|---|---|---|---|\n";
@@ -231,6 +269,11 @@ int run(const Opts& o) {
               << per(r.samples, r.clocks) << " fragments/clock, " << per(r.triangles, r.clocks)
               << " triangles/clock, bottleneck " << fxr::cyc::stage_name(r.bottleneck()) << "; report " << o.out
               << "/report.md\n";
+  if (o.rtl && !o.quiet)
+    std::cout << "cycles " << sc.source << ": RTL " << rtl["clocks"].get<uint64_t>() << " clocks (deviation "
+              << std::showpos << std::setprecision(3) << 100.0 * rtl["deviation"].get<double>() << std::noshowpos
+              << " %), RTL " << rtl["seconds"].get<double>() << " s, SystemC " << r.seconds << " s: speed ratio "
+              << rtl["speed_ratio"].get<double>() << "\n";
   return 0;
 }
 
@@ -248,6 +291,9 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_flag("--no-sweep", o->no_sweep, "skip the architecture sweep");
   sub.add_flag("--no-plot", o->no_plot, "do not call scripts/plot_cycles.py");
   sub.add_flag("--quiet", o->quiet, "no summary line");
+  sub.add_flag("--rtl", o->rtl,
+               "the scene through the RTL unit too (fxraster cosim into OUT/rtl): its clocks, the deviation and the "
+               "speed ratio RTL / SystemC of this run");
   return [o]() { return run(*o); };
 }
 

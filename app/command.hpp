@@ -33,4 +33,10 @@ struct Registrar {
 // stderr is not a terminal except for every 10 %.
 void progress(const std::string& label, uint64_t done, uint64_t total);
 
+// The co-simulation executable (tb/cosim/cosim_main.cpp; app/cmd_cosim.cpp): its path
+// ($FXRASTER_COSIM, else build/tb/fxraster-cosim), and a run of it with `arguments` (its exit
+// status: 0 match, 1 mismatch, 2 bad input or not built).
+std::string cosim_binary();
+int run_cosim(const std::vector<std::string>& arguments);
+
 }  // namespace fxr::app

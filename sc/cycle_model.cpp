@@ -35,13 +35,13 @@
 namespace fxr::cyc {
 
 const char* stage_name(int s) {
-  static const char* const n[kNumStages] = {"geometry", "setup", "traverse", "interp_front", "interp_back", "depth", "divide"};
+  static const char* const n[kNumStages] = {"input", "clip", "recip", "viewport", "setup", "traverse", "interp_front", "interp_back", "depth", "divide"};
   return s >= 0 && s < kNumStages ? n[s] : "?";
 }
 
 int CycleRun::bottleneck() const {
   int b = kSetup;
-  for (int s = kGeometry; s < kNumStages; ++s)
+  for (int s = kInput; s < kNumStages; ++s)
     if (stage[(size_t)s].busy > stage[(size_t)b].busy) b = s;
   return b;
 }
@@ -51,8 +51,12 @@ namespace {
 // ---- tokens ------------------------------------------------------------------------------------
 // sc_fifo needs a default constructor, assignment and operator<< (sc_fifo::print).
 
-struct TriTok {
+struct GeoPrim;
+struct GeoPiece;
+struct TriTok {  // setup's input; in stages 1–4 the primitive and, after the clipper, the piece
   const SetupTriangle* tri = nullptr;
+  const GeoPrim* prim = nullptr;
+  const GeoPiece* piece = nullptr;
   uint64_t t = 0;
 };
 struct EqTok {
@@ -66,26 +70,10 @@ struct SpanTok {
   size_t tri = 0;  // its triangle's index in the equations FIFO's order
   uint64_t t = 0;
 };
-struct HandTok {  // interp front → back: the span's samples
-  std::shared_ptr<std::vector<PlaneSample>> samples;
-  uint64_t t = 0;
-};
-struct SampleTok {
-  PlaneSample ps;
-  uint64_t t = 0;
-};
-struct DepthEntry {  // a sample in fxr_depth's queue
-  PlaneSample ps;
-  bool pass = false, hazard_tracked = false;
-  int64_t pixel = 0;
-  uint64_t head = 0;  // earliest clock it can leave (its read answered, compared at the head)
-  uint64_t t = 0;
-};
-struct PipeTok {  // in a pipelined stage: an output and the clock it reaches the pipeline's end
-  const SetupTriangle* tri = nullptr;
+struct PipeTok {  // in setup's pipeline: its equations (none: culled) and the clock it reaches the end
   std::shared_ptr<const TriangleEquations> eq;
-  Fragment f;
   uint64_t t = 0;
+  uint64_t froze = 0;  // the pipeline's held clocks when it entered
 };
 template <class T>
 std::ostream& print_tok(std::ostream& os, const T& x) {
@@ -94,9 +82,6 @@ std::ostream& print_tok(std::ostream& os, const T& x) {
 std::ostream& operator<<(std::ostream& os, const TriTok& x) { return print_tok(os, x); }
 std::ostream& operator<<(std::ostream& os, const EqTok& x) { return print_tok(os, x); }
 std::ostream& operator<<(std::ostream& os, const SpanTok& x) { return print_tok(os, x); }
-std::ostream& operator<<(std::ostream& os, const HandTok& x) { return print_tok(os, x); }
-std::ostream& operator<<(std::ostream& os, const SampleTok& x) { return print_tok(os, x); }
-std::ostream& operator<<(std::ostream& os, const DepthEntry& x) { return print_tok(os, x); }
 std::ostream& operator<<(std::ostream& os, const PipeTok& x) { return print_tok(os, x); }
 
 // ---- clocks ------------------------------------------------------------------------------------
@@ -112,14 +97,51 @@ struct Shared {
   CycleRun* run = nullptr;
   bool timeline = false;
   bool span_clocks = false;
+  bool traverse_clocks = false;
+};
+
+// A stage's counters: busy clocks as the union of [b, e) intervals, stalled clocks of held results.
+class Acct {
+ public:
+  Acct(Shared& sh, int stage) : sh_(sh), stage_(stage) {}
+  StageClocks& clk() { return sh_.run->stage[(size_t)stage_]; }
+  // Busy clocks as the union of [b, e) intervals (in non-decreasing b order).
+  void busy(uint64_t b, uint64_t e) {
+    b = std::max(b, busy_end_);
+    if (e <= b) return;
+    clk().busy += e - b;
+    busy_end_ = e;
+    if (sh_.timeline) {
+      auto& v = sh_.run->busy[(size_t)stage_];
+      if (!v.empty() && v.back().second == b) v.back().second = e;
+      else v.emplace_back(b, e);
+    }
+  }
+  // A result valid from `a` put into its link valid from `v` (v > a: held): the clocks counted
+  // once when a pipeline's results queue up behind one held result.
+  void put(uint64_t a, uint64_t v) {
+    hold(a, v);
+    ++clk().out;
+  }
+  // A result held in the stage's output register over [a, e).
+  void hold(uint64_t a, uint64_t e) {
+    const uint64_t from = std::max(a, stall_end_);
+    if (e > from) clk().stalled += e - from;
+    stall_end_ = std::max(stall_end_, e);
+  }
+
+ private:
+  Shared& sh_;
+  int stage_;
+  uint64_t busy_end_ = 0, stall_end_ = 0;
 };
 
 class Clocked : public sc_core::sc_module {
  public:
-  Clocked(sc_core::sc_module_name n, Shared& sh, int stage) : sc_core::sc_module(n), sh_(sh), stage_(stage) {}
+  Clocked(sc_core::sc_module_name n, Shared& sh, int stage) : sc_core::sc_module(n), sh_(sh), acct_(sh, stage) {}
 
  protected:
-  StageClocks& clk() { return sh_.run->stage[(size_t)stage_]; }
+  StageClocks& clk() { return acct_.clk(); }
   void wait_until(uint64_t t) {
     const uint64_t n = now_clock();
     if (t > n) wait((double)(t - n), sc_core::SC_NS);
@@ -145,31 +167,50 @@ class Clocked : public sc_core::sc_module {
       blocked = true;
     }
     x.t = blocked ? now_clock() + 1 : now_clock();
-    // Held from `at` until the result is in the register; the clocks counted once when a
-    // pipeline's results queue up behind one held result.
-    const uint64_t from = std::max(a, stall_end_);
-    if (x.t > from) clk().stalled += x.t - from;
-    stall_end_ = std::max(stall_end_, x.t);
-    ++clk().out;
+    acct_.put(a, x.t);
     out.write(x);
     return x.t;  // the clock the result is valid from
   }
-  // Busy clocks as the union of [b, e) intervals (in non-decreasing b order).
-  void busy(uint64_t b, uint64_t e) {
-    b = std::max(b, busy_end_);
-    if (e <= b) return;
-    clk().busy += e - b;
-    busy_end_ = e;
-    if (sh_.timeline) {
-      auto& v = sh_.run->busy[(size_t)stage_];
-      if (!v.empty() && v.back().second == b) v.back().second = e;
-      else v.emplace_back(b, e);
+  void busy(uint64_t b, uint64_t e) { acct_.busy(b, e); }
+
+  // One pipeline enable (fxr_recip_stage, fxr_viewport, fxr_setup: advance = out_ready or no
+  // valid result in the last register): while a result in the output register is not taken,
+  // every result in the pipeline and the input wait, so each result leaves as many clocks later
+  // as the pipeline was held since it entered (bubbles are not squeezed out).
+  struct Freeze {
+    uint64_t froze = 0;  // clocks held so far
+    bool held = false;
+    sc_core::sc_event thaw;
+  };
+  // The input of a frozen pipeline: its next slot (free_at, moved by the clocks held since
+  // `base`), not while the output register is held (checked after the output thread's put of
+  // the same clock).
+  void wait_accept(Freeze& fz, uint64_t free_at, uint64_t base) {
+    for (;;) {
+      wait_until(free_at + (fz.froze - base));
+      wait(sc_core::SC_ZERO_TIME);
+      if (!fz.held) return;
+      wait(fz.thaw);
     }
+  }
+  // The output of a frozen pipeline: a result reaching the end at t (moved by the clocks held
+  // since it entered: the caller's) goes into the output register; from then until its consumer
+  // takes it (while the link is full) the pipeline is held.
+  template <class T>
+  uint64_t put_frozen(sc_core::sc_fifo_out<T>& out, const T& x, uint64_t t, Freeze& fz) {
+    const uint64_t v = put(out, x, t);  // the register is free unless link_depth > 1 filled it
+    if (v > t) fz.froze += v - t;
+    fz.held = true;
+    while (out.num_free() == 0) wait(out.data_read_event());
+    const uint64_t c = now_clock();
+    if (c > v) fz.froze += c - v, acct_.hold(v, c);
+    fz.held = false;
+    fz.thaw.notify(sc_core::SC_ZERO_TIME);
+    return v;
   }
 
   Shared& sh_;
-  int stage_;
-  uint64_t busy_end_ = 0, stall_end_ = 0;
+  Acct acct_;
 };
 
 // ---- stage modules -----------------------------------------------------------------------------
@@ -216,9 +257,11 @@ class SetupModule : public Clocked {
 
  private:
   void accept() {
-    uint64_t free_at = 0;
+    uint64_t free_at = 0, base = 0;
     for (;;) {
-      const TriTok k = take(in, free_at);
+      wait_accept(fz_, free_at, base);
+      const TriTok k = take(in, 0);
+      wait_accept(fz_, now_clock(), fz_.froze);
       const uint64_t ta = now_clock();
       if (sh_.run->triangles == 0 && sh_.run->primitives == 0) sh_.run->first_in = ta;
       ++sh_.run->triangles;
@@ -230,26 +273,30 @@ class SetupModule : public Clocked {
       PipeTok p;
       p.eq = eq;
       p.t = ta + (uint64_t)latency_;
+      p.froze = fz_.froze;
       pipe_.write(p);  // blocks while the pipeline is full (its output not taken)
       free_at = ta + (uint64_t)ii_;
+      base = fz_.froze;
     }
   }
   void emit() {
     for (;;) {
       const PipeTok p = pipe_.read();
+      const uint64_t t = p.t + (fz_.froze - p.froze);
       if (!p.eq) {
-        wait_until(p.t);
+        wait_until(t);
         continue;
       }
       ++sh_.run->drawn;
       EqTok e;
       e.eq = p.eq;
-      put(out, e, p.t);
+      put_frozen(out, e, t, fz_);
     }
   }
 
   SetupStage stage_;
   sc_core::sc_fifo<PipeTok> pipe_;
+  Freeze fz_;
   int latency_ = 0, ii_ = 1;
 };
 
@@ -339,6 +386,7 @@ class TraverseModule : public Clocked {
       if (tm.empty) {
         free_at = ta + 1;
         eq_fifo->past(j, ta + 1);
+        if (sh_.traverse_clocks) sh_.run->traverse_tri.emplace_back(ta, ta);
         continue;
       }
       uint64_t shift = 0;  // clocks lost to a full output register
@@ -371,6 +419,7 @@ class TraverseModule : public Clocked {
         ++sh_.run->spans;
       }
       free_at = ta + shift + (uint64_t)tm.rows * rc;
+      if (sh_.traverse_clocks) sh_.run->traverse_tri.emplace_back(ta, free_at);
       eq_fifo->past(j, free_at);
       busy(ta, free_at);
       clk().busy -= shift;  // those clocks are counted as stalled (put)
@@ -382,14 +431,170 @@ class TraverseModule : public Clocked {
   uint64_t link_depth_ = 1;
 };
 
+// Stages 7 (the interpolators' back), 8 (fxr_depth) and 9 (fxr_divide) after the hand-over of a
+// span: no thread of their own. Nothing upstream waits on them but the hand-over (the back is
+// free in the clock of its last sample), and every clock of a sample follows from the clocks of
+// the samples before it, so a span's samples are timed here in order, in plain code, when the
+// front hands the span over (docs/cycles.md, "Speed"): the same rules as links and threads would
+// give — a register freed in clock F takes the next result valid from F + 1, a consumer takes a
+// result when it is free and the result valid — at no SystemC event per sample.
+class BackChain {
+ public:
+  BackChain(Shared& sh, const Config& cfg, const ArchConfig& arch, const DrawState& st, FrameOutput& f, FragmentSink* sink)
+      : sh_(sh),
+        back_(sh, kInterpBack),
+        depth_(sh, kDepth),
+        divide_(sh, kDivide),
+        depth_stage_(cfg, st, DepthBufferView{f.depth.data(), f.width, st.viewport_x, st.viewport_y}),
+        divide_stage_(cfg, st, true),
+        sink_(sink),
+        sample_link_((size_t)arch.link_depth),
+        pass_link_((size_t)std::max(2, arch.link_depth)),  // fxr_depth's 2-entry output FIFO
+        queue_((size_t)std::max(1, arch.depth_queue_depth - 1)),  // + the entry the head holds
+        head_clocks_(DepthStage::head_clocks(arch.mem_latency)),
+        test_(st.depth_test),
+        hazards_(st.depth_test && st.depth_write),
+        shared_port_(arch.depth_write_port == 0 && st.depth_test && st.depth_write),
+        width_(f.width),
+        div_(divide_cost(cfg, std::max(1, st.num_varyings), arch_divide_lanes(arch, st.num_varyings))) {
+    sample_read_.assign(sample_link_, 0);
+    pass_read_.assign(pass_link_, 0);
+    head_read_.assign(queue_, 0);
+  }
+
+  // The span's samples handed over in clock h; returns the clock the back is free again (its
+  // last sample put into the link to fxr_depth).
+  uint64_t span(const std::vector<PlaneSample>& samples, uint64_t h) {
+    ++back_.clk().in;
+    uint64_t at = h + 1;  // the first sample, the clock after the hand-over
+    uint64_t free = h;
+    for (const PlaneSample& p : samples) {
+      // Back → depth link (sample_link_ registers): held while the sample sample_link_ before
+      // this one is not read; then valid the clock after that read.
+      const uint64_t r_old = sample_read_[n_samples_ % sample_link_];
+      const bool blocked = n_samples_ >= sample_link_ && r_old >= at;
+      const uint64_t written = blocked ? r_old : at, valid = blocked ? r_old + 1 : at;
+      back_.put(at, valid);
+      back_.busy(written, written + 1);
+      ++sh_.run->samples;
+      sample_read_[n_samples_ % sample_link_] = depth_sample(p, written, valid);
+      ++n_samples_;
+      free = written;
+      at = written + 1;
+    }
+    return free;
+  }
+
+ private:
+  // fxr_depth: accepts the sample (read from the link in the returned clock), tests it (the
+  // model's step, in order), queues it behind the memory read; the head leaves in order, one per
+  // clock, once its read is answered (DepthStage::head_clocks), a passing sample into the 2-entry
+  // output FIFO to the divider.
+  uint64_t depth_sample(const PlaneSample& ps, uint64_t written, uint64_t valid) {
+    const uint64_t read = std::max(accept_free_, written);
+    uint64_t ta = std::max(read, valid);
+    ++depth_.clk().in;
+    const int64_t pixel = (int64_t)ps.y * (int64_t)width_ + ps.x;
+    // Read-after-write: taken once the queued entry of the pixel has left (the clock after it
+    // left; a passing one once its write is in the output FIFO).
+    if (hazards_) {
+      const auto it = release_.find(pixel);
+      if (it != release_.end()) ta = std::max(ta, it->second);
+    }
+    // A request-port slot taken by a write (shared port) delays the read.
+    if (shared_port_) {
+      apply_port_writes(ta, true);
+      ta = std::max(ta, port_free_);
+      apply_port_writes(ta, false);
+      port_free_ = ta + 1;
+    }
+    const bool pass = depth_stage_.step(ps, [](const PlaneSample&) {});
+    depth_.busy(ta, ta + 1);  // the memory port's read slot
+    // Into the queue (depth_queue_depth entries: queue_ behind the one the head holds): held
+    // while the entry queue_ before this one has not been read by the head.
+    const uint64_t h_old = head_read_[n_depth_ % queue_];
+    const uint64_t in_queue = n_depth_ >= queue_ ? std::max(ta, h_old) : ta;
+    accept_free_ = in_queue + 1;
+    // The head: reads the entry once done with the one before, leaves once its read is answered.
+    const uint64_t head_read = std::max(head_done_, in_queue);
+    head_read_[n_depth_ % queue_] = head_read;
+    ++n_depth_;
+    uint64_t leave = std::max({head_read, ta + (uint64_t)(test_ ? head_clocks_ : 1), head_next_});
+    if (pass) {
+      ++sh_.run->passed;
+      if (shared_port_) port_writes_.push_back(leave);
+      // Into the output FIFO (pass_link_ entries): held while the one pass_link_ before is unread.
+      const uint64_t at = leave + 1;
+      const uint64_t r_old = pass_read_[n_pass_ % pass_link_];
+      const bool blocked = n_pass_ >= pass_link_ && r_old >= at;
+      const uint64_t written = blocked ? r_old : at, v = blocked ? r_old + 1 : at;
+      depth_.put(at, v);
+      pass_read_[n_pass_ % pass_link_] = divide(ps, written, v);
+      ++n_pass_;
+      leave = std::max(leave, written - 1);
+      head_done_ = written;
+      if (hazards_) release_[pixel] = written;
+    } else {
+      head_done_ = leave;
+      if (hazards_) release_[pixel] = leave + 1;
+    }
+    // Occupied while the sample is in the queue or the output FIFO (the RTL's count registers:
+    // from the clock after its input transfer to the clock its successor takes it).
+    const uint64_t ob = std::max(ta + 1, occ_end_), oe = leave + (pass ? 2 : 1);
+    if (oe > ob) depth_.clk().occupied += oe - ob, occ_end_ = oe;
+    head_next_ = leave + 1;
+    return read;
+  }
+  // Shared port: the head's writes change the port's next free slot in the clock they leave
+  // (those up to clock t; before_accept: including t).
+  void apply_port_writes(uint64_t t, bool before_accept) {
+    while (!port_writes_.empty() && (before_accept ? port_writes_.front() <= t : port_writes_.front() < t)) {
+      port_free_ = std::max(port_free_, port_writes_.front()) + 1;
+      port_writes_.pop_front();
+    }
+  }
+  // fxr_divide, pipelined (divide_cost: latency, ii = groups of lanes); its output is the unit's,
+  // taken every clock. Returns the clock it read the sample from the FIFO.
+  uint64_t divide(const PlaneSample& ps, uint64_t written, uint64_t valid) {
+    const uint64_t read = std::max(divide_free_, written);
+    const uint64_t ta = std::max(read, valid);
+    ++divide_.clk().in;
+    divide_stage_.step(ps, [&](const Fragment& f) {
+      if (sink_) sink_->emit(f);
+    });
+    divide_.busy(ta, ta + (uint64_t)div_.ii);
+    ++divide_.clk().out;
+    sh_.run->last_out = ta + (uint64_t)div_.latency;
+    divide_free_ = ta + (uint64_t)div_.ii;
+    return read;
+  }
+
+  Shared& sh_;
+  Acct back_, depth_, divide_;
+  DepthStage depth_stage_;
+  DivideStage divide_stage_;
+  FragmentSink* sink_;
+  size_t sample_link_, pass_link_, queue_;
+  int head_clocks_;
+  bool test_, hazards_, shared_port_;
+  int width_;
+  StageCost div_;
+  // Per link / queue slot: the clock its consumer read the entry last put there.
+  std::vector<uint64_t> sample_read_, pass_read_, head_read_;
+  uint64_t n_samples_ = 0, n_pass_ = 0, n_depth_ = 0;
+  uint64_t accept_free_ = 0, head_done_ = 0, head_next_ = 0, occ_end_ = 0, divide_free_ = 0, port_free_ = 0;
+  std::deque<uint64_t> port_writes_;
+  std::unordered_map<int64_t, uint64_t> release_;  // pixel → the clock its last queued entry frees it
+};
+
 // Stage 7: fxr_interp. The front takes a span, spends InterpStage::span_front_clocks on it and
 // hands it to the back in the clock the back is free (then takes the next span); the back puts
-// out one sample per clock.
+// out one sample per clock (BackChain, below).
 class InterpFront : public Clocked {
  public:
   SC_HAS_PROCESS(InterpFront);
   sc_core::sc_fifo_in<SpanTok> in;
-  sc_core::sc_fifo<HandTok>* hand = nullptr;
+  BackChain* back = nullptr;
   EqFifo* eq_fifo = nullptr;
   InterpFront(sc_core::sc_module_name n, Shared& sh, const Config& cfg, const ArchConfig& arch, const DrawState& st)
       : Clocked(n, sh, kInterpFront), stage_(cfg, st, true), steps_(arch.interp_div_steps) {
@@ -418,187 +623,22 @@ class InterpFront : public Clocked {
       if (sh_.span_clocks) sh_.run->span_taken.push_back(ta);
       eq_fifo->taken.notify(sc_core::SC_ZERO_TIME);
       if (k.last_of_tri) eq_fifo->last_span(k.tri, ta);
-      auto samples = std::make_shared<std::vector<PlaneSample>>();
-      stage_.step(*k.eq, k.sp, [&](const PlaneSample& p) { samples->push_back(p); });
+      samples_.clear();
+      stage_.step(*k.eq, k.sp, [&](const PlaneSample& p) { samples_.push_back(p); });
       const uint64_t done = ta + (uint64_t)InterpStage::span_front_clocks(*k.eq, k.sp, steps_);
       busy(ta, done);
-      wait_until(done);
-      const uint64_t a = now_clock();
-      HandTok h;
-      h.samples = samples;
-      h.t = done;
-      hand->write(h);
-      wait(sc_core::SC_ZERO_TIME);  // the write becomes readable in the update phase
-      while (hand->num_available() > 0) wait(hand->data_read_event());  // handed over
-      clk().stalled += now_clock() - a;
+      // Handed over once the back is free (the clock of its previous span's last sample).
+      const uint64_t h = std::max(done, back_free_);
+      clk().stalled += h - done;
       ++clk().out;
-      free_at = now_clock();  // the next span is accepted in the hand-over clock
+      back_free_ = back->span(samples_, h);
+      free_at = h;  // the next span is accepted in the hand-over clock
     }
   }
   InterpStage stage_;
   int steps_;
-};
-
-class InterpBack : public Clocked {
- public:
-  SC_HAS_PROCESS(InterpBack);
-  sc_core::sc_fifo<HandTok>* hand = nullptr;
-  sc_core::sc_fifo_out<SampleTok> out;
-  InterpBack(sc_core::sc_module_name n, Shared& sh) : Clocked(n, sh, kInterpBack) {
-    SC_THREAD(main);
-    set_stack_size(kStack);
-  }
-
- private:
-  void main() {
-    for (;;) {
-      const HandTok h = hand->read();
-      ++clk().in;
-      uint64_t t = now_clock() + 1;  // the first sample, the clock after the hand-over
-      for (const PlaneSample& p : *h.samples) {
-        SampleTok s;
-        s.ps = p;
-        put(out, s, t);
-        busy(now_clock(), now_clock() + 1);
-        ++sh_.run->samples;
-        t = now_clock() + 1;
-      }
-      // free for the next hand-over in the clock of its last sample
-    }
-  }
-};
-
-// Stage 8: fxr_depth. Accept thread: the queue (depth_queue_depth entries), the read-after-write
-// hazard, the model's test in order; head thread: entries leave in order, one per clock, once
-// their read is answered (DepthStage::head_clocks), passing ones into the output FIFO (2
-// entries, the link to stage 9).
-class DepthModule : public Clocked {
- public:
-  SC_HAS_PROCESS(DepthModule);
-  sc_core::sc_fifo_in<SampleTok> in;
-  sc_core::sc_fifo_out<SampleTok> out;
-  DepthModule(sc_core::sc_module_name n, Shared& sh, const Config& cfg, const ArchConfig& arch, const DrawState& st,
-              FrameOutput& f)
-      : Clocked(n, sh, kDepth),
-        stage_(cfg, st, DepthBufferView{f.depth.data(), f.width, st.viewport_x, st.viewport_y}),
-        queue_("queue", std::max(1, arch.depth_queue_depth - 1)),  // + the entry the head thread holds
-        head_clocks_(DepthStage::head_clocks(arch.mem_latency)),
-        test_(st.depth_test),
-        hazards_(st.depth_test && st.depth_write),
-        shared_port_(arch.depth_write_port == 0 && st.depth_test && st.depth_write),
-        width_(f.width) {
-    SC_THREAD(accept);
-    set_stack_size(kStack);
-    SC_THREAD(head);
-    set_stack_size(kStack);
-  }
-
- private:
-  void accept() {
-    uint64_t free_at = 0;
-    for (;;) {
-      SampleTok k = take(in, free_at);
-      DepthEntry e;
-      e.pixel = (int64_t)k.ps.y * (int64_t)width_ + k.ps.x;
-      // Read-after-write: wait until the queued entry of this pixel has left.
-      if (hazards_) {
-        for (;;) {
-          auto it = in_queue_.find(e.pixel);
-          if (it == in_queue_.end() || it->second == 0) break;
-          wait(left_);
-        }
-        const auto lt = left_at_.find(e.pixel);
-        if (lt != left_at_.end()) wait_until(lt->second + 1);
-      }
-      // A port slot taken by a write (shared request port) delays the read.
-      if (shared_port_) wait_until(port_free_);
-      const uint64_t ta = now_clock();
-      e.ps = k.ps;
-      e.pass = stage_.step(k.ps, [](const PlaneSample&) {});
-      e.head = ta + (uint64_t)(test_ ? head_clocks_ : 1);
-      e.t = ta;
-      if (hazards_) {
-        ++in_queue_[e.pixel];
-        e.hazard_tracked = true;
-      }
-      port_free_ = ta + 1;
-      busy(ta, ta + 1);  // the memory port's read slot
-      queue_.write(e);   // blocks while the queue is full
-      free_at = now_clock() + 1;
-    }
-  }
-  void head() {
-    uint64_t next = 0;
-    for (;;) {
-      const DepthEntry e = queue_.read();
-      wait_until(std::max(e.head, next));
-      uint64_t leave = now_clock();
-      if (e.pass) {
-        ++sh_.run->passed;
-        SampleTok s;
-        s.ps = e.ps;
-        // The write of a passing sample: in the clock it leaves (write channel or, shared, the
-        // request port's slot, which the next read then waits for).
-        if (shared_port_) port_free_ = std::max(port_free_, leave) + 1;
-        put(out, s, leave + 1);
-        leave = std::max(leave, now_clock() - 1);
-      }
-      // Occupied while the sample is in the queue or the output FIFO (the RTL's count registers:
-      // from the clock after its input transfer to the clock its successor takes it).
-      const uint64_t ob = std::max(e.t + 1, occ_end_), oe = leave + (e.pass ? 2 : 1);
-      if (oe > ob) clk().occupied += oe - ob, occ_end_ = oe;
-      if (e.hazard_tracked) {
-        --in_queue_[e.pixel];
-        left_at_[e.pixel] = leave;
-        left_.notify(sc_core::SC_ZERO_TIME);
-      }
-      next = leave + 1;
-    }
-  }
-
-  DepthStage stage_;
-  sc_core::sc_fifo<DepthEntry> queue_;
-  int head_clocks_;
-  bool test_, hazards_, shared_port_;
-  int width_;
-  uint64_t port_free_ = 0, occ_end_ = 0;
-  std::unordered_map<int64_t, int> in_queue_;
-  std::unordered_map<int64_t, uint64_t> left_at_;
-  sc_core::sc_event left_;
-};
-
-// Stage 9: fxr_divide, pipelined (divide_cost: latency, ii = groups of lanes). Its output is the
-// unit's, taken every clock (the testbench's out_ready_i = 1), so it is not a link: a fragment
-// leaves `latency` clocks after its input transfer and goes to the sink in order.
-class DivideModule : public Clocked {
- public:
-  SC_HAS_PROCESS(DivideModule);
-  sc_core::sc_fifo_in<SampleTok> in;
-  FragmentSink* sink = nullptr;
-  DivideModule(sc_core::sc_module_name n, Shared& sh, const Config& cfg, const ArchConfig& arch, const DrawState& st)
-      : Clocked(n, sh, kDivide), stage_(cfg, st, true),
-        cost_(divide_cost(cfg, std::max(1, st.num_varyings), arch_divide_lanes(arch, st.num_varyings))) {
-    SC_THREAD(accept);
-    set_stack_size(kStack);
-  }
-
- private:
-  void accept() {
-    uint64_t free_at = 0;
-    for (;;) {
-      const SampleTok k = take(in, free_at);
-      const uint64_t ta = now_clock();
-      stage_.step(k.ps, [&](const Fragment& f) {
-        if (sink) sink->emit(f);
-      });
-      busy(ta, ta + (uint64_t)cost_.ii);
-      ++clk().out;
-      sh_.run->last_out = ta + (uint64_t)cost_.latency;
-      free_at = ta + (uint64_t)cost_.ii;
-    }
-  }
-  DivideStage stage_;
-  StageCost cost_;
+  uint64_t back_free_ = 0;
+  std::vector<PlaneSample> samples_;
 };
 
 // A fresh SystemC kernel per run: SystemC 2.3 cannot elaborate again after sc_start, so each
@@ -621,46 +661,31 @@ struct Backend {
   sc_core::sc_fifo<TriTok> l_in;
   sc_core::sc_fifo<EqTok> l_eq;
   sc_core::sc_fifo<SpanTok> l_span;
-  sc_core::sc_fifo<HandTok> l_hand;
-  sc_core::sc_fifo<SampleTok> l_sample, l_pass;
   EqFifo eq_fifo;
   SetupModule setup;
   TraverseModule traverse;
   InterpFront front;
-  InterpBack back;
-  DepthModule depth;
-  DivideModule divide;
+  BackChain back;
 
   Backend(CycleRun& run, const CycleOptions& opt, const Config& cfg, const ArchConfig& arch, const DrawState& st, FrameOutput& f,
           FragmentSink* out)
-      : sh{&run, opt.timeline, opt.span_clocks},
+      : sh{&run, opt.timeline, opt.span_clocks, opt.traverse_clocks},
         l_in("l_in", arch.link_depth),
         l_eq("l_eq", arch.link_depth),
         l_span("l_span", arch.link_depth),
-        l_hand("l_hand", 1),
-        l_sample("l_sample", arch.link_depth),
-        l_pass("l_pass", std::max(2, arch.link_depth)),  // fxr_depth's 2-entry output FIFO
         eq_fifo(arch.tri_fifo_depth),
         setup("setup", sh, cfg, arch, st),
         traverse("traverse", sh, cfg, arch, st),
         front("interp_front", sh, cfg, arch, st),
-        back("interp_back", sh),
-        depth("depth", sh, cfg, arch, st, f),
-        divide("divide", sh, cfg, arch, st) {
+        back(sh, cfg, arch, st, f, out) {
     setup.in(l_in);
     setup.out(l_eq);
     traverse.in(l_eq);
     traverse.out(l_span);
     traverse.eq_fifo = &eq_fifo;
     front.in(l_span);
-    front.hand = &l_hand;
+    front.back = &back;
     front.eq_fifo = &eq_fifo;
-    back.hand = &l_hand;
-    back.out(l_sample);
-    depth.in(l_sample);
-    depth.out(l_pass);
-    divide.in(l_pass);
-    divide.sink = out;
   }
 };
 
@@ -676,21 +701,154 @@ void finish(CycleRun& run, std::chrono::steady_clock::time_point t0) {
   }
 }
 
-// Stages 1–4 as one module: each primitive through fxr::GeometryChain (convert, clip, recip,
-// viewport: the model's rule that a primitive is rejected whole), latency the sum of the four
-// stages' cost(), one primitive per clock plus one clock per extra clipped piece.
-class GeometryModule : public Clocked {
+// ---- stages 1–4 ---------------------------------------------------------------------------------
+// The values come from fxr::GeometryChain run once per primitive (the model's rule that a
+// primitive is rejected whole); what each RTL stage did with it is recorded by taps, and four
+// timing modules (fxr_input, fxr_clip, fxr_recip_stage, fxr_viewport) move it through.
+
+struct GeoPiece {  // a triangle out of the clipper
+  const SetupTriangle* tri = nullptr;  // out of the viewport (nullptr: rejected there or before)
+  bool recip_ok = false;               // left the reciprocal stage
+  bool viewport_ok = false;            // left the viewport stage
+};
+struct GeoPrim {
+  bool converted = false;  // left fxr_input (not rejected for NaN / Inf / range)
+  int64_t clip_clocks = 1; // ClipStage::rtl_cycles(): 1 for the trivial cases
+  std::vector<GeoPiece> pieces;
+};
+using GeoTok = TriTok;
+
+// Records per primitive what the chain's stages emitted; the clipper's clocks from a second
+// ClipStage on the same input (the chain's own is private to it).
+struct GeoTaps {
+  GeoTaps(const Config& cfg, const DrawState& st) : clip(cfg, st) {}
+  ClipStage clip;
+  GeoPrim* p = nullptr;
+  template <class S>
+  void in(const typename S::In&) {}
+  template <class S>
+  void out(const typename S::Out& o) {
+    if constexpr (std::is_same_v<S, ConvertStage>) {
+      p->converted = true;
+      clip.step(o, [](const ClippedTriangle&) {});
+      p->clip_clocks = std::max<int64_t>(1, clip.rtl_cycles());
+    } else if constexpr (std::is_same_v<S, ClipStage>) {
+      p->pieces.emplace_back();
+    } else if constexpr (std::is_same_v<S, RecipStage>) {
+      p->pieces.back().recip_ok = true;
+    } else if constexpr (std::is_same_v<S, ViewportStage>) {
+      p->pieces.back().viewport_ok = true;
+    }
+  }
+};
+
+// Testbench source of the whole unit: the primitives, one offered per clock; each one's values
+// computed as it is offered.
+class GeoSource : public sc_core::sc_module {
  public:
-  SC_HAS_PROCESS(GeometryModule);
-  sc_core::sc_fifo_out<TriTok> out;
-  GeometryModule(sc_core::sc_module_name n, Shared& sh, const Config& cfg, const DrawState& st,
-                 const std::vector<ClipTriangle>& prims)
-      : Clocked(n, sh, kGeometry),
-        chain_(cfg, st, taps_),
-        prims_(prims),
-        latency_(ConvertStage::cost(cfg).latency + ClipStage::cost(cfg).latency + RecipStage::cost(cfg).latency +
-                 ViewportStage::cost(cfg).latency),
-        pipe_("pipe", std::max(1, latency_ - 1)) {
+  SC_HAS_PROCESS(GeoSource);
+  sc_core::sc_fifo_out<GeoTok> out;
+  GeoSource(sc_core::sc_module_name n, const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& prims)
+      : sc_core::sc_module(n), taps_(cfg, st), chain_(cfg, st, taps_), prims_(prims) {
+    SC_THREAD(main);
+    set_stack_size(kStack);
+  }
+
+ private:
+  void main() {
+    std::vector<SetupTriangle> pieces;
+    RasterStats stats;
+    InputTriangle in;
+    for (size_t i = 0; i < prims_.size(); ++i) {
+      GeoPrim& g = prims.emplace_back();
+      taps_.p = &g;
+      in.prim = (uint32_t)i;
+      in.tri = prims_[i];
+      pieces.clear();
+      chain_.run(in, pieces, stats);
+      // The pieces the viewport passed, in order (a piece failing stage 3 or 4 is dropped alone).
+      size_t k = 0;
+      for (GeoPiece& pc : g.pieces)
+        if (pc.viewport_ok && k < pieces.size()) pc.tri = &tris.emplace_back(pieces[k++]);
+      GeoTok t;
+      t.prim = &g;
+      t.t = now_clock();
+      out->write(t);
+      wait(kClock);
+    }
+  }
+  GeoTaps taps_;
+  GeometryChain<GeoTaps> chain_;
+  const std::vector<ClipTriangle>& prims_;
+
+ public:
+  std::deque<GeoPrim> prims;       // stable addresses for the tokens
+  std::deque<SetupTriangle> tris;
+};
+
+// Stages 1 and 2, fxr_input and fxr_clip, around one output register each.
+// fxr_input (clip = false): one register (ConvertStage::cost: latency 1, II 1); a rejected
+// primitive leaves without an output.
+// fxr_clip (clip = true): a trivially accepted or rejected primitive takes one clock
+// (ClipStage::cost: latency 1, II 1); a clipped one occupies the clipper
+// ClipStage::rtl_cycles() clocks (input transfer to the decision), then its fan leaves one
+// triangle per clock, and the next primitive is taken once the fan is out.
+class GeoRegStage : public Clocked {
+ public:
+  SC_HAS_PROCESS(GeoRegStage);
+  sc_core::sc_fifo_in<GeoTok> in;
+  sc_core::sc_fifo_out<GeoTok> out;
+  GeoRegStage(sc_core::sc_module_name n, Shared& sh, const Config& cfg, bool clip)
+      : Clocked(n, sh, clip ? kClip : kInput),
+        clip_(clip),
+        latency_((uint64_t)(clip ? ClipStage::cost(cfg).latency : ConvertStage::cost(cfg).latency)) {
+    SC_THREAD(main);
+    set_stack_size(kStack);
+  }
+
+ private:
+  void main() {
+    uint64_t free_at = 0;
+    for (;;) {
+      GeoTok k = take(in, free_at);
+      const uint64_t ta = now_clock();
+      if (!clip_ && sh_.run->primitives++ == 0) sh_.run->first_in = ta;
+      const uint64_t clocks = clip_ ? (uint64_t)k.prim->clip_clocks : 1;
+      busy(ta, ta + clocks);
+      uint64_t at = clocks > 1 ? ta + clocks + 1 : ta + latency_;
+      if (!clip_) {
+        if (k.prim->converted) put(out, k, at);
+      } else {
+        for (const GeoPiece& pc : k.prim->pieces) {
+          k.piece = &pc;
+          at = put(out, k, at) + 1;
+        }
+      }
+      free_at = std::max(ta + clocks, clocks > 1 ? now_clock() + 1 : now_clock());
+    }
+  }
+  bool clip_;
+  uint64_t latency_;
+};
+
+// A pipelined stage of `latency` clocks taking a triangle every `ii` clocks, `capacity`
+// triangles in it. frozen: one pipeline enable (fxr_viewport): while its output register is
+// held, every triangle in it and the input wait (the clocks since a triangle entered move its
+// output by as much); else the results queue behind a held one (fxr_recip_stage's FIFO).
+// keep(piece): whether the triangle leaves with an output.
+class PipeModule : public Clocked {
+ public:
+  SC_HAS_PROCESS(PipeModule);
+  sc_core::sc_fifo_in<GeoTok> in;
+  sc_core::sc_fifo_out<GeoTok> out;
+  PipeModule(sc_core::sc_module_name n, Shared& sh, int stage, int latency, int ii, int capacity, bool frozen,
+             bool (*keep)(const GeoPiece&))
+      : Clocked(n, sh, stage),
+        latency_((uint64_t)latency),
+        ii_((uint64_t)ii),
+        frozen_(frozen),
+        keep_(keep),
+        pipe_("pipe", std::max(1, capacity - 1)) {  // + the one the output thread holds
     SC_THREAD(accept);
     set_stack_size(kStack);
     SC_THREAD(emit);
@@ -698,47 +856,83 @@ class GeometryModule : public Clocked {
   }
 
  private:
+  struct Tok {
+    GeoTok g;
+    uint64_t t = 0, froze = 0;
+  };
+  friend std::ostream& operator<<(std::ostream& os, const Tok& x) { return os << "@" << x.t; }
   void accept() {
-    std::vector<SetupTriangle> pieces;
-    RasterStats stats;
-    InputTriangle in;
-    uint64_t free_at = 0;
-    for (size_t p = 0; p < prims_.size(); ++p) {
-      wait_until(free_at);
+    uint64_t free_at = 0, base = 0;
+    for (;;) {
+      if (frozen_) wait_accept(fz_, free_at, base);  // the slot counter stands still while held
+      GeoTok k = take(in, free_at);
+      if (frozen_) wait_accept(fz_, now_clock(), fz_.froze);
       const uint64_t ta = now_clock();
-      if (p == 0) sh_.run->first_in = ta;
-      ++clk().in;
-      ++sh_.run->primitives;
-      in.prim = (uint32_t)p;
-      in.tri = prims_[p];
-      pieces.clear();
-      chain_.run(in, pieces, stats);
-      const uint64_t occ = std::max<uint64_t>(1, pieces.size());  // a clock per piece out
-      busy(ta, ta + occ);
-      for (size_t i = 0; i < pieces.size(); ++i) {
-        tris_.push_back(pieces[i]);
-        PipeTok k;
-        k.tri = &tris_.back();
-        k.t = ta + (uint64_t)latency_ + i;
-        pipe_.write(k);  // blocks while the pipeline is full
-      }
-      free_at = std::max(ta + occ, now_clock());
+      busy(ta, ta + ii_);
+      Tok p;
+      p.g = k;
+      p.t = ta + latency_;
+      p.froze = fz_.froze;
+      pipe_.write(p);
+      free_at = ta + ii_;
+      base = fz_.froze;
     }
   }
   void emit() {
     for (;;) {
-      const PipeTok p = pipe_.read();
-      TriTok k;
-      k.tri = p.tri;
-      put(out, k, p.t);
+      const Tok p = pipe_.read();
+      const uint64_t t = p.t + (fz_.froze - p.froze);
+      wait_until(t);
+      if (!keep_(*p.g.piece)) continue;
+      GeoTok x = p.g;
+      x.tri = x.piece->tri;
+      if (frozen_) put_frozen(out, x, t, fz_);
+      else put(out, x, t);
     }
   }
-  NoTaps taps_;
-  GeometryChain<NoTaps> chain_;
-  const std::vector<ClipTriangle>& prims_;
-  int latency_ = 0;
-  sc_core::sc_fifo<PipeTok> pipe_;
-  std::deque<SetupTriangle> tris_;  // stable addresses for the tokens
+  uint64_t latency_, ii_;
+  bool frozen_;
+  bool (*keep_)(const GeoPiece&);
+  sc_core::sc_fifo<Tok> pipe_;
+  Freeze fz_;  // stays zero unless frozen_
+};
+
+// Stages 1–4 in front of a back end's input link.
+struct Geometry {
+  sc_core::sc_fifo<GeoTok> l_src, l_input, l_clip, l_recip;
+  GeoSource src;
+  GeoRegStage input, clip;
+  PipeModule recip, viewport;
+  static int recip_latency(const Config& cfg) { return RecipStage::cost(cfg).latency; }
+  Geometry(Backend& b, const Config& cfg, const ArchConfig& arch, const DrawState& st, const std::vector<ClipTriangle>& prims)
+      : l_src("l_src", 1),
+        l_input("l_input", arch.link_depth),
+        l_clip("l_clip", arch.link_depth),
+        l_recip("l_recip", arch.link_depth),
+        src("source", cfg, st, prims),
+        input("input", b.sh, cfg, false),
+        clip("clip", b.sh, cfg, true),
+        // fxr_recip_stage: fxr_recip's pipeline (II 1, one enable: out_ready low stalls the lanes).
+        recip("recip", b.sh, kRecip, recip_latency(cfg), 1, recip_latency(cfg), true,
+              [](const GeoPiece& p) { return p.recip_ok; }),
+        viewport("viewport", b.sh, kViewport, ViewportStage::cost(cfg, st.num_varyings, arch.viewport_lanes).latency,
+                 ViewportStage::cost(cfg, st.num_varyings, arch.viewport_lanes).ii,
+                 viewport_capacity(cfg, arch, st), true, [](const GeoPiece& p) { return p.tri != nullptr; }) {
+    src.out(l_src);
+    input.in(l_src);
+    input.out(l_input);
+    clip.in(l_input);
+    clip.out(l_clip);
+    recip.in(l_clip);
+    recip.out(l_recip);
+    viewport.in(l_recip);
+    viewport.out(b.l_in);
+  }
+  // Triangles in fxr_viewport at once: ⌈latency / II⌉ plus the input register.
+  static int viewport_capacity(const Config& cfg, const ArchConfig& arch, const DrawState& st) {
+    const StageCost c = ViewportStage::cost(cfg, st.num_varyings, arch.viewport_lanes);
+    return (c.latency + c.ii - 1) / c.ii + 1;
+  }
 };
 
 }  // namespace
@@ -771,8 +965,7 @@ CycleRun run_unit_cycles(const Config& cfg, const ArchConfig& arch, const DrawSt
   fresh_sc_kernel();
   const auto t0 = std::chrono::steady_clock::now();
   Backend& b = *new Backend(run, opt, cfg, arch, st, f, sink);  // kept: as above
-  GeometryModule& geo = *new GeometryModule("geometry", b.sh, cfg, st, prims);
-  geo.out(b.l_in);
+  new Geometry(b, cfg, arch, st, prims);
   sc_core::sc_start();
   finish(run, t0);
   return run;

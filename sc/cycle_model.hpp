@@ -25,8 +25,8 @@
 
 namespace fxr::cyc {
 
-// The modules whose clocks are counted. kGeometry only in run_unit_cycles.
-enum Stage : int { kGeometry, kSetup, kTraverse, kInterpFront, kInterpBack, kDepth, kDivide, kNumStages };
+// The modules whose clocks are counted. Stages 1–4 (kInput … kViewport) only in run_unit_cycles.
+enum Stage : int { kInput, kClip, kRecip, kViewport, kSetup, kTraverse, kInterpFront, kInterpBack, kDepth, kDivide, kNumStages };
 const char* stage_name(int s);
 
 // Clocks of one stage over the frame [first input, last output]:
@@ -44,6 +44,7 @@ struct StageClocks {
 struct CycleOptions {
   bool timeline = false;     // keep every stage's busy intervals (for the occupancy plot)
   bool span_clocks = false;  // keep the clock every span is taken by the interpolators
+  bool traverse_clocks = false;  // keep every triangle's [accept, ready for the next) in traversal
 };
 
 struct CycleRun {
@@ -58,6 +59,7 @@ struct CycleRun {
   std::array<StageClocks, kNumStages> stage{};
   std::array<std::vector<std::pair<uint64_t, uint64_t>>, kNumStages> busy;  // [begin, end) when timeline
   std::vector<uint64_t> span_taken;  // when span_clocks: the clock each span entered the interpolators
+  std::vector<std::pair<uint64_t, uint64_t>> traverse_tri;  // when traverse_clocks: per triangle, in order
 
   // The stage with the most busy clocks (the one every other waits for).
   int bottleneck() const;
@@ -71,8 +73,9 @@ CycleRun run_backend_cycles(const Config& cfg, const ArchConfig& arch, const Dra
                             const std::vector<SetupTriangle>& tris, FrameOutput& f, FragmentSink* sink,
                             const CycleOptions& opt = {});
 
-// The whole unit: stages 1–4 (one geometry module: fxr::GeometryChain, each primitive to 0..n
-// snapped triangles) in front of the back end. Prepares `f` (frame_begin).
+// The whole unit (rtl/fxr_raster_unit.sv): stages 1–4 (fxr_input, fxr_clip, fxr_recip_stage,
+// fxr_viewport; the values from fxr::GeometryChain, each primitive to 0..n snapped triangles) in
+// front of the back end. Prepares `f` (frame_begin).
 CycleRun run_unit_cycles(const Config& cfg, const ArchConfig& arch, const DrawState& st,
                          const std::vector<ClipTriangle>& prims, FrameOutput& f, FragmentSink* sink,
                          const CycleOptions& opt = {});

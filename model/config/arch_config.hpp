@@ -32,6 +32,7 @@ struct ArchConfig {
   int mem_latency = 1;         // depth memory read latency in clocks (≥ 1; the testbench's default)
   int link_depth = 1;          // registered entries on a stage-to-stage link (the RTL's valid/ready register)
   int prim_per_clock = 1;      // primitives the source offers per clock (1: one per clock, the testbench)
+  int viewport_lanes = 3;      // fxr_raster_unit ViewportLanes (kViewportLanes): fxr_viewport's pipelined dividers
 
   template <class V>
   void visit(V& v) {
@@ -48,6 +49,8 @@ struct ArchConfig {
     v.integer("mem_latency", mem_latency, 1, 64, "depth memory read latency (clocks from request to response)");
     v.integer("link_depth", link_depth, 1, 16, "registered entries on each stage-to-stage link");
     v.integer("prim_per_clock", prim_per_clock, 1, 1, "primitives offered to the unit per clock");
+    v.integer("viewport_lanes", viewport_lanes, 1, 32,
+              "pipelined dividers of stage 4 (a triangle's quotients issued this many per clock)");
   }
 };
 

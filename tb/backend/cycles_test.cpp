@@ -59,12 +59,16 @@ struct RtlOccupancy {
   uint64_t divide = 0;        // u_divide.in_q_valid (the sample register, one clock per group)
   uint64_t cyc = 0;
   std::vector<uint64_t> taken;  // the clock of every span transfer traversal → interpolators
+  std::vector<uint64_t> tri_occ;  // per triangle traversal accepted: clocks not idle until the next accept
   void count(Vfxr_raster_backend& dut) {
     auto* r = dut.rootp;
     ++cyc;
     if (r->fxr_raster_backend__DOT__u_traverse__DOT__out_valid_q && r->fxr_raster_backend__DOT__tv_out_ready)
       taken.push_back(cyc);
-    traverse += r->fxr_raster_backend__DOT__u_traverse__DOT__state_q != 0;
+    const bool busy = r->fxr_raster_backend__DOT__u_traverse__DOT__state_q != 0;
+    traverse += busy;
+    if (busy && !tri_occ.empty()) ++tri_occ.back();
+    if (r->fxr_raster_backend__DOT__push) tri_occ.push_back(0);
     interp_front += r->fxr_raster_backend__DOT__u_interp__DOT__front_q != 0;
     interp_back += r->fxr_raster_backend__DOT__u_interp__DOT__b_valid_q != 0;
     depth += (r->fxr_raster_backend__DOT__u_depth__DOT__count_q | r->fxr_raster_backend__DOT__u_depth__DOT__of_count_q) != 0;
@@ -104,6 +108,7 @@ void compare(const std::string& name, const fxr::Config& cfg, const Draw& d, con
   Collect scs;
   fxr::cyc::CycleOptions copt;
   copt.span_clocks = true;
+  copt.traverse_clocks = true;
   const CycleRun sc = fxr::cyc::run_backend_cycles(cfg, fxr::ArchConfig{}, d.st, tris, sf, &scs, copt);
   ASSERT_EQ(scs.v.size(), model.v.size()) << name << ": SystemC fragments";
   size_t bad = 0;
@@ -143,6 +148,31 @@ void compare(const std::string& name, const fxr::Config& cfg, const Draw& d, con
     }
   }
   std::printf("CYCLES %s: span transfers, largest RTL − SystemC difference %lld clocks\n", name.c_str(), (long long)worst_span);
+  // Traversal, triangle by triangle: clocks not idle after its accept (RTL) against the model's
+  // [accept, ready for the next); the differences summed, and the first few printed.
+  {
+    int64_t sum = 0;
+    int shown = 0;
+    const size_t n = std::min(occ.tri_occ.size(), sc.traverse_tri.size());
+    EXPECT_EQ(occ.tri_occ.size(), sc.traverse_tri.size()) << name << ": triangles accepted by traversal";
+    for (size_t j = 0; j < n; ++j) {
+      const int64_t m = (int64_t)(sc.traverse_tri[j].second - sc.traverse_tri[j].first);
+      const int64_t d = (int64_t)occ.tri_occ[j] - m;
+      sum += d;
+      if (d != 0 && shown++ < 6)
+        std::printf("CYCLES %s traverse triangle %zu: RTL %llu clocks, SystemC %lld (accepted at SystemC clock %llu, "
+                    "next at %llu)\n", name.c_str(), j, (unsigned long long)occ.tri_occ[j], (long long)m,
+                    (unsigned long long)(sc.traverse_tri[j].first - sc.first_in),
+                    (unsigned long long)(j + 1 < sc.traverse_tri.size() ? sc.traverse_tri[j + 1].first - sc.first_in : 0));
+    }
+    std::printf("CYCLES %s traverse per triangle: RTL − SystemC %lld clocks over %zu triangles\n", name.c_str(),
+                (long long)sum, n);
+    // Bound (docs/cycles.md, "Traversal's occupancy"): the RTL's traversal is busy about a clock
+    // longer on a triangle after which it idles (a clock that never reaches a span: the span
+    // transfer clocks agree), so at most one clock per triangle, plus 5 % for the frame's end
+    // (the last triangle's rows after the last fragment: guard_band −208 of 45,848).
+    EXPECT_LE(std::llabs(sum), (long long)n + (long long)(occ.traverse / 20)) << name << ": traversal occupancy";
+  }
   std::printf("CYCLES %s RTL stall counters:", name.c_str());
   for (int i = 0; i < kPerf; ++i) std::printf(" %s %llu", kPerfNames[i], (unsigned long long)k.perf[(size_t)i]);
   std::printf("; SystemC stalled: traverse %llu, interp_front %llu, interp_back %llu; starved: interp_front %llu\n",

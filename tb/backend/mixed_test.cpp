@@ -9,21 +9,15 @@
 // within 5 % of the transaction-level model's. Labels rtl and sc.
 #include <gtest/gtest.h>
 
-#include <systemc.h>
-
-#include <array>
 #include <cstdio>
 
 #include "Vfxr_raster_backend_sc.h"
-#include "depth_mem.hpp"
+#include "backend/mixed_bench.hpp"
 #include "frontend/scene.hpp"
 #include "model/unit/chain.hpp"
 #include "model/vectors/codegen.hpp"
-#include "model/vectors/record_vectors.hpp"
 #include "model/vectors/scene_dump.hpp"
 #include "sc/cycle_model.hpp"
-#include "txn/draw_state_ports.hpp"
-#include "txn_harness.hpp"
 
 namespace {
 
@@ -31,12 +25,12 @@ using Dut = Vfxr_raster_backend_sc;
 constexpr int kRtlVaryings = fxr::kRecordPackageVaryings;
 constexpr double kClockTolerance = 0.05;
 
-template <class P>
-using PortT = typename std::remove_reference_t<P>::data_type;
+using fxr::tb::mixed::PortT;
 
 // One signal per DUT port, named as the port: drive_draw_state and DepthMem's drive / observe
 // work on it as on the C++ model's ports.
 struct Pins {
+  static constexpr bool kRegs = false;  // the draw state on ports (drive_draw_state)
   sc_core::sc_signal<bool> rst_ni{"rst_ni"};
 #define FXR_PIN(name) sc_core::sc_signal<PortT<decltype(std::declval<Dut&>().name)>> name{#name};
   FXR_PIN(in_valid_i)
@@ -108,106 +102,7 @@ struct Pins {
   }
 };
 
-// A packed record as 32-bit words (RecordBinding's port interface), copied to / from sc_bv.
-template <int N>
-struct Words {
-  std::array<uint32_t, (N + 31) / 32> w{};
-  uint32_t operator[](size_t i) const { return w[i]; }
-  uint32_t& operator[](size_t i) { return w[i]; }
-};
-template <int N>
-void to_bv(const Words<N>& w, sc_dt::sc_bv<N>& bv) {
-  for (size_t i = 0; i < w.w.size(); ++i) bv.set_word((int)i, w.w[i]);
-}
-template <int N>
-void from_bv(const sc_dt::sc_bv<N>& bv, Words<N>& w) {
-  for (size_t i = 0; i < w.w.size(); ++i) w.w[i] = bv.get_word((int)i);
-}
-template <class T>
-struct BvWidth;
-template <int N>
-struct BvWidth<sc_dt::sc_bv<N>> {
-  static constexpr int value = N;
-};
-
-struct Collect : fxr::FragmentSink {
-  std::vector<fxr::Fragment> v;
-  void emit(const fxr::Fragment& f) override { v.push_back(f); }
-};
-
-// The testbench: reset, then a triangle offered per clock; the memory; every fragment taken.
-// Drives in the clock's second half, samples the handshakes a quarter clock before the edge.
-SC_MODULE(Bench) {
-  Pins pins;
-  sc_core::sc_clock clk{"clk", 1, sc_core::SC_NS};
-  Dut dut{"dut"};
-  const std::vector<fxr::VecRow>* in_rows = nullptr;
-  fxr::tb::RecordBinding in_b, out_b;
-  fxr::VecLayout out_lay;
-  std::vector<fxr::VecRow> out_rows;
-  fxr::tb::DepthMem* mem = nullptr;
-  fxr::DrawState st;
-  int wib = 0;
-  uint64_t cycle = 0, first_in = 0, last_out = 0, outputs = 0;
-  bool done = false;
-
-  SC_CTOR(Bench) {
-    pins.bind(dut, clk);
-    SC_THREAD(main);
-  }
-  void main() {
-    using InBv = PortT<decltype(dut.in_i)>;
-    using OutBv = PortT<decltype(dut.out_o)>;
-    constexpr int kIn = BvWidth<InBv>::value, kOut = BvWidth<OutBv>::value;
-    fxr::tb::drive_draw_state(pins, st, wib);
-    pins.out_ready_i = true;
-    pins.in_valid_i = false;
-    pins.rst_ni = false;
-    mem->reset();
-    for (int i = 0; i < 4; ++i) wait(clk.posedge_event());
-    wait(clk.negedge_event());
-    pins.rst_ni = true;
-    size_t next = 0;
-    uint64_t idle = 0;
-    Words<kIn> wi;
-    Words<kOut> wo;
-    InBv bv_in;
-    OutBv bv_out;
-    fxr::VecRow row(out_lay.size(), 0);
-    for (;;) {
-      // Drive for the coming edge.
-      mem->drive(pins);
-      const bool have = next < in_rows->size();
-      if (have) {
-        wi = Words<kIn>{};
-        in_b.drive(wi, (*in_rows)[next]);
-        to_bv(wi, bv_in);
-        pins.in_i = bv_in;
-      }
-      pins.in_valid_i = have;
-      wait(0.25, sc_core::SC_NS);  // combinational outputs settled
-      if (have && pins.in_ready_o.read()) {
-        if (next == 0) first_in = cycle;
-        ++next;
-      }
-      if (pins.out_valid_o.read()) {
-        from_bv(pins.out_o.read(), wo);
-        out_b.sample(wo, row);
-        out_rows.push_back(row);
-        last_out = cycle;
-        ++outputs;
-        idle = 0;
-      } else if (next == in_rows->size() && ++idle > 400) {
-        break;  // drained
-      }
-      mem->observe(pins);
-      wait(clk.negedge_event());
-      ++cycle;
-    }
-    done = true;
-    sc_core::sc_stop();
-  }
-};
+using Bench = fxr::tb::mixed::Bench<Dut, Pins>;
 
 void run_mixed(const std::string& name, const fxr::Scene& sc) {
   fxr::DrawState st = sc.state;
@@ -227,7 +122,7 @@ void run_mixed(const std::string& name, const fxr::Scene& sc) {
     in_rows.push_back(std::move(r));
   }
   fxr::FrameOutput mf;
-  Collect model;
+  fxr::tb::mixed::Collect model;
   fxr::NoTaps taps;
   fxr::run_raster_unit_to(cfg, st, sc.tris, mf, &model, taps);
 
@@ -249,9 +144,7 @@ void run_mixed(const std::string& name, const fxr::Scene& sc) {
   b->mem = &mem;
   b->st = st;
   b->wib = cfg.raster.window_int_bits;
-  const auto t0 = std::chrono::steady_clock::now();
-  sc_core::sc_start();
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double secs = fxr::tb::mixed::run_bench();
   ASSERT_TRUE(b->done) << name;
 
   // Fragments: the model's, bit for bit and in order.
@@ -270,7 +163,7 @@ void run_mixed(const std::string& name, const fxr::Scene& sc) {
   EXPECT_EQ((uint64_t)b->pins.stat_spans_o.read(), tl.spans) << name;
   EXPECT_EQ((uint64_t)b->pins.stat_frag_generated_o.read(), tl.samples) << name;
   EXPECT_EQ((uint64_t)b->pins.stat_frag_depth_pass_o.read(), tl.passed) << name;
-  const uint64_t rtl = b->outputs ? b->last_out - b->first_in + 1 : 0;
+  const uint64_t rtl = b->clocks();
   const double dev = rtl ? ((double)tl.clocks - (double)rtl) / (double)rtl : 0.0;
   std::printf("MIXED %s: RTL in SystemC %llu clocks (%.2f s), transaction-level %llu clocks (%.3f s), deviation %+.2f %%; "
               "%llu triangles, %llu spans, %llu fragments; span_stall %llu, span_wait %llu\n",

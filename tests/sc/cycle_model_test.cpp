@@ -11,6 +11,7 @@
 
 #include "frontend/scene.hpp"
 #include "model/config/arch_config.hpp"
+#include "model/stages/viewport.hpp"
 #include "model/unit/chain.hpp"
 #include "sc/cycle_model.hpp"
 
@@ -101,6 +102,8 @@ TEST(ArchConfig, DefaultsAreTheBackendRtlParameters) {
   EXPECT_EQ(a.interp_div_steps, rtl_param(src, "InterpDivSteps"));
   EXPECT_EQ(a.divide_lanes, 0) << "DivideLanes defaults to NumVaryings: lanes 0 means one per varying";
   EXPECT_EQ(fxr::kDepthQueueDepth, a.depth_queue_depth);
+  // Stage 4's lanes: fxr_raster_unit's ViewportLanes, emitted from kViewportLanes into fxr_rec_pkg.
+  EXPECT_EQ(a.viewport_lanes, fxr::kViewportLanes);
 }
 
 TEST(ArchConfig, JsonRoundTripAndErrorsNameTheField) {
