@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <verilated.h>
@@ -49,6 +51,36 @@ inline std::string out_dir() {
 #endif
   std::filesystem::create_directories(d);
   return d;
+}
+
+// CPU time of the process (every thread, a threaded model's too): the speed figures divide by it as
+// well as by the wall clock, which a loaded machine stretches (docs/rtl.md, "Co-simulation speed").
+inline double cpu_seconds_now() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+// Whether the model was verilated with --trace-fst (its trace() exists): a model without it runs the
+// same, and the replay of a failed run writes no waveform (docs/rtl.md, "Co-simulation speed").
+template <class D, class = void>
+struct HasTrace : std::false_type {};
+template <class D>
+struct HasTrace<D, std::void_t<decltype(std::declval<D&>().trace((VerilatedFstC*)nullptr, 0))>> : std::true_type {};
+
+// Opens `wave` and attaches it to the model; nullptr when the model has no tracing compiled in.
+template <class Dut>
+std::unique_ptr<VerilatedFstC> open_trace(Dut& dut, const std::string& wave) {
+  if constexpr (HasTrace<Dut>::value) {
+    auto tfp = std::make_unique<VerilatedFstC>();
+    dut.trace(tfp.get(), 99);
+    tfp->open(wave.c_str());
+    return tfp;
+  } else {
+    (void)dut;
+    std::fprintf(stderr, "note: %s not written: the model was verilated without --trace-fst\n", wave.c_str());
+    return nullptr;
+  }
 }
 
 struct HarnessOptions {
@@ -80,7 +112,8 @@ struct RunResult {
   uint64_t sent = 0;     // inputs accepted by the DUT
   uint64_t cycles = 0;
   int64_t first_latency = -1;  // cycles from the first input transfer to the first output valid
-  double seconds = 0;
+  double seconds = 0;      // wall clock of the simulation loop
+  double cpu_seconds = 0;  // CPU time of the process over the loop
   double vectors_per_s = 0;
   bool timeout = false;
   bool sim_error = false;  // Verilator reported an error ($fatal, assertion)
@@ -150,24 +183,22 @@ RunResult simulate(const VecLayout& lay, const SourceFactory& make_source, const
   if (trace) ctx->traceEverOn(true);
   auto dut = std::make_unique<Dut>(ctx.get(), "dut");
   std::unique_ptr<VerilatedFstC> tfp;
-  if (trace) {
-    tfp = std::make_unique<VerilatedFstC>();
-    dut->trace(tfp.get(), 99);
-    tfp->open(wave.c_str());
-  }
+  if (trace) tfp = open_trace(*dut, wave);
   std::mt19937_64 hs(o.seed);  // handshake randomness only
   auto chance = [&hs](unsigned pct) { return (hs() % 100) < pct; };
   uint64_t cycle = 0;
   auto dump = [&](uint64_t t) {
     if (tfp && cycle >= trace_first && cycle <= trace_last) tfp->dump(t);
   };
-  auto tick = [&]() {  // rising edge, then the low half of the next cycle
+  // The rising edge, then clk low: evaluated with the next cycle's inputs in the loop (dumped at
+  // 2·cycle), on its own only between reset clocks (as tb/txn_harness.hpp's tick).
+  auto tick = [&](bool settle_low) {
     dut->clk_i = 1;
     dut->eval();
     dump(2 * cycle + 1);
     ++cycle;
     dut->clk_i = 0;
-    dut->eval();  // dumped with the next cycle's inputs, at 2·cycle
+    if (settle_low) dut->eval();
   };
 
   dut->clk_i = 0;
@@ -175,7 +206,7 @@ RunResult simulate(const VecLayout& lay, const SourceFactory& make_source, const
   dut->in_valid_i = 0;
   dut->out_ready_i = 0;
   dut->eval();
-  for (uint64_t i = 0; i < o.reset_cycles; ++i) tick();
+  for (uint64_t i = 0; i < o.reset_cycles; ++i) tick(true);
   dut->rst_ni = 1;
   dut->eval();
 
@@ -187,6 +218,7 @@ RunResult simulate(const VecLayout& lay, const SourceFactory& make_source, const
   uint64_t vec_in = 0, last_progress = 0, idle_after_end = 0;
   int64_t first_in_cycle = -1;
   const auto t0 = std::chrono::steady_clock::now();
+  const double c0 = cpu_seconds_now();
 
   auto record = [&](Mismatch m) {
     ++res.errors;
@@ -234,7 +266,7 @@ RunResult simulate(const VecLayout& lay, const SourceFactory& make_source, const
       offering = false;
       have = src(pending);
     }
-    tick();
+    tick(false);
     if (ctx->gotError()) {
       res.sim_error = true;
       if (o.print) std::printf("SIMERROR %s: Verilator reported an error at cycle %llu\n", o.unit.c_str(),
@@ -251,6 +283,7 @@ RunResult simulate(const VecLayout& lay, const SourceFactory& make_source, const
     if (tfp && cycle > trace_last) break;
   }
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.cpu_seconds = cpu_seconds_now() - c0;
   res.cycles = cycle;
   res.vectors_per_s = res.seconds > 0 ? (double)res.checked / res.seconds : 0;
   if (tfp) tfp->close();
@@ -267,7 +300,7 @@ template <class P>
 RunResult run(const VecLayout& lay, const SourceFactory& src, const HarnessOptions& o) {
   RunResult r = detail::simulate<P>(lay, src, o, false, 0, 0, "");
   const std::string base = out_dir() + "/" + (o.run_name.empty() ? o.unit : o.run_name);
-  if (!r.passed() && o.write_wave) {
+  if (!r.passed() && o.write_wave && HasTrace<typename P::Dut>::value) {
     // Replay (the stimulus is deterministic) with tracing on, dumping only the window.
     uint64_t at = r.mismatches.empty() ? r.cycles : r.mismatches.front().cycle;
     const uint64_t first = at > o.wave_before ? at - o.wave_before : 0;
@@ -280,8 +313,10 @@ RunResult run(const VecLayout& lay, const SourceFactory& src, const HarnessOptio
     for (auto& [cls, n] : r.classes) std::printf("  class %-24s %llu\n", cls.c_str(), (unsigned long long)n);
     std::printf("%s: checked=%llu errors=%llu\n", o.unit.c_str(), (unsigned long long)r.checked,
                 (unsigned long long)r.errors);
-    std::printf("%s: %llu cycles, %.3f s, %.0f vectors/s (gaps %u%%, stalls %u%%)\n", o.unit.c_str(),
-                (unsigned long long)r.cycles, r.seconds, r.vectors_per_s, o.in_gap_pct, o.out_stall_pct);
+    std::printf("%s: %llu cycles, %.3f s, %.0f vectors/s; %.3f CPU s, %.0f vectors per CPU second (gaps %u%%, stalls "
+                "%u%%)\n",
+                o.unit.c_str(), (unsigned long long)r.cycles, r.seconds, r.vectors_per_s, r.cpu_seconds,
+                r.cpu_seconds > 0 ? (double)r.checked / r.cpu_seconds : 0.0, o.in_gap_pct, o.out_stall_pct);
     if (r.timeout) std::printf("%s: TIMEOUT after %llu cycles without output\n", o.unit.c_str(),
                                (unsigned long long)o.timeout_cycles);
     if (!r.wave.empty()) std::printf("%s: waveform of the first mismatch: %s\n", o.unit.c_str(), r.wave.c_str());
@@ -290,7 +325,7 @@ RunResult run(const VecLayout& lay, const SourceFactory& src, const HarnessOptio
   // Summary JSON and mismatch CSV beside the waveform.
   nlohmann::json j{{"unit", o.unit},       {"run", o.run_name},      {"checked", r.checked},
                    {"errors", r.errors},   {"sent", r.sent},         {"cycles", r.cycles}, {"first_latency", r.first_latency},
-                   {"seconds", r.seconds}, {"vectors_per_s", r.vectors_per_s},
+                   {"seconds", r.seconds}, {"cpu_seconds", r.cpu_seconds}, {"vectors_per_s", r.vectors_per_s},
                    {"timeout", r.timeout}, {"sim_error", r.sim_error}, {"passed", r.passed()},
                    {"seed", o.seed},       {"in_gap_pct", o.in_gap_pct}, {"out_stall_pct", o.out_stall_pct},
                    {"classes", r.classes}, {"wave", r.wave}};

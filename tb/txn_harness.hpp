@@ -25,6 +25,7 @@
 // (as tb/harness.hpp does).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -42,6 +43,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness.hpp"  // cpu_seconds_now()
 #include "model/vectors/scene_dump.hpp"
 #include "model/vectors/vectors.hpp"
 
@@ -73,6 +75,30 @@ constexpr int port_bits() {
   else return (int)(sizeof(T) / sizeof(uint32_t)) * 32;  // VlWide<N>: N words
 }
 
+// Bits [lsb, lsb + width) of a port (width ≤ kVecMaxFieldBits), read / OR-ed in by 32-bit word
+// pieces: a field costs one to five word accesses, not one per bit (the per-bit loop was 17 % of
+// `fxraster cosim`'s time; docs/rtl.md, "Co-simulation speed").
+template <class T>
+vec_word port_field(const T& p, int lsb, int width) {
+  vec_word v = 0;
+  for (int got = 0; got < width;) {
+    const int at = lsb + got, b = at % 32, take = std::min(32 - b, width - got);
+    const uint32_t piece = (port_word(p, at / 32) >> b) & (take == 32 ? 0xffffffffu : ((1u << take) - 1u));
+    v |= (vec_word)piece << got;
+    got += take;
+  }
+  return v;
+}
+template <class T>
+void or_port_field(T& p, int lsb, int width, vec_word v) {
+  for (int put = 0; put < width;) {
+    const int at = lsb + put, b = at % 32, take = std::min(32 - b, width - put);
+    const uint32_t piece = (uint32_t)(v >> put) & (take == 32 ? 0xffffffffu : ((1u << take) - 1u));
+    if (piece) set_port_word(p, at / 32, port_word(p, at / 32) | (piece << b));
+    put += take;
+  }
+}
+
 // The record part of a layout: fields [first, size), their struct bit positions.
 struct RecordBinding {
   std::vector<int> col, lsb, width;
@@ -88,29 +114,20 @@ struct RecordBinding {
       width.push_back(lay[f].width);
     }
   }
+  // `row` points at a row's first column (VecRow::data(), or a row inside a stream's data).
+  template <class T>
+  void drive(T& port, const vec_word* row) const {
+    static_assert(sizeof(vec_word) * 8 >= kVecMaxFieldBits, "fields up to kVecMaxFieldBits");
+    for (int i = 0; i < (port_bits<T>() + 31) / 32; ++i) set_port_word(port, i, 0);
+    for (size_t k = 0; k < col.size(); ++k) or_port_field(port, lsb[k], width[k], row[(size_t)col[k]]);
+  }
   template <class T>
   void drive(T& port, const VecRow& row) const {
-    static_assert(sizeof(vec_word) * 8 >= 64, "fields up to kVecMaxFieldBits");
-    for (int i = 0; i < (port_bits<T>() + 31) / 32; ++i) set_port_word(port, i, 0);
-    for (size_t k = 0; k < col.size(); ++k) {
-      const vec_word v = row[(size_t)col[k]];
-      for (int b = 0; b < width[k]; ++b)
-        if ((v >> b) & 1) {
-          const int at = lsb[k] + b;
-          set_port_word(port, at / 32, port_word(port, at / 32) | (1u << (at % 32)));
-        }
-    }
+    drive(port, row.data());
   }
   template <class T>
   void sample(const T& port, VecRow& row) const {
-    for (size_t k = 0; k < col.size(); ++k) {
-      vec_word v = 0;
-      for (int b = 0; b < width[k]; ++b) {
-        const int at = lsb[k] + b;
-        if ((port_word(port, at / 32) >> (at % 32)) & 1) v |= (vec_word)1 << b;
-      }
-      row[(size_t)col[k]] = v;
-    }
+    for (size_t k = 0; k < col.size(); ++k) row[(size_t)col[k]] = port_field(port, lsb[k], width[k]);
   }
 };
 
@@ -171,7 +188,8 @@ struct TxnResult {
   uint64_t inputs = 0, outputs = 0, errors = 0, cycles = 0;
   uint64_t busy_cycles = 0;  // cycles with an input accepted and its outputs not all out
   uint64_t first_in_cycle = 0, last_out_cycle = 0;  // first input transfer, last output transfer
-  double seconds = 0;
+  double seconds = 0;      // wall clock of the simulation loop
+  double cpu_seconds = 0;  // CPU time of the process over the loop (cpu_seconds_now(): a shared machine's load aside)
   bool timeout = false, sim_error = false;
   std::map<std::string, uint64_t> classes;
   std::vector<TxnMismatch> mismatches;
@@ -203,24 +221,24 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
   if (trace) ctx->traceEverOn(true);
   auto dut = std::make_unique<Dut>(ctx.get(), "dut");
   std::unique_ptr<VerilatedFstC> tfp;
-  if (trace) {
-    tfp = std::make_unique<VerilatedFstC>();
-    dut->trace(tfp.get(), 99);
-    tfp->open(wave.c_str());
-  }
+  if (trace) tfp = open_trace(*dut, wave);
   std::mt19937_64 hs(o.seed);
   auto chance = [&hs](unsigned pct) { return (hs() % 100) < pct; };
   uint64_t cycle = 0;
   auto dump = [&](uint64_t t) {
     if (tfp && cycle >= trace_first && cycle <= trace_last) tfp->dump(t);
   };
-  auto tick = [&]() {
+  // The rising edge, then clk low. Two evaluations per clock, not three: in the loop the low half is
+  // evaluated together with the next cycle's inputs (nothing in the RTL acts on the falling edge);
+  // only between reset clocks, with no inputs in between, is it evaluated on its own (Verilator
+  // sees an edge only against the last evaluated value). docs/rtl.md, "Co-simulation speed".
+  auto tick = [&](bool settle_low) {
     dut->clk_i = 1;
     dut->eval();
     dump(2 * cycle + 1);
     ++cycle;
     dut->clk_i = 0;
-    dut->eval();
+    if (settle_low) dut->eval();
   };
   if (hook && hook->reset) hook->reset();
   auto hook_drive = [&] {
@@ -232,7 +250,7 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
   dut->out_ready_i = 0;
   hook_drive();
   dut->eval();
-  for (uint64_t i = 0; i < o.reset_cycles; ++i) tick();
+  for (uint64_t i = 0; i < o.reset_cycles; ++i) tick(true);
   dut->rst_ni = 1;
   hook_drive();
   dut->eval();
@@ -249,17 +267,18 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
   bool offering = false;
   VecRow got(v.out.lay.size());
   const auto t0 = std::chrono::steady_clock::now();
+  const double c0 = cpu_seconds_now();
   for (;;) {
     if (next_in < v.in.rows && !offering && cycle >= o.reset_cycles + o.input_delay_cycles) {
       offering = !chance(o.in_gap_pct);
       if (offering) {
-        const VecRow row = v.in.row(next_in);
+        const vec_word* row = v.in.data.data() + next_in * v.in.lay.size();
         in_b.drive(dut->in_i, row);
         if constexpr (HasCtx<Dut>::value) {
           if (!ctx_file) throw ConfigError(o.unit + ": the DUT has ctx_i but no context file was given");
           const uint64_t c = (uint64_t)row[2];  // in header: txn, n_out, ctx
           if (c >= ctx_file->rows) throw ConfigError(v.in.path + ":" + std::to_string(next_in + 1) + ": field 'ctx': no such line");
-          ctx_b.drive(dut->ctx_i, ctx_file->row(c));
+          ctx_b.drive(dut->ctx_i, ctx_file->data.data() + c * ctx_file->lay.size());
         }
       }
     }
@@ -280,7 +299,7 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
         record({next_out, cycle, "extra", "output " + std::to_string(next_out + 1) + " beyond the " +
                                               std::to_string(v.out.rows) + " rows of " + v.out.path});
       } else {
-        const VecRow want = v.out.row(next_out);
+        const vec_word* want = v.out.data.data() + next_out * v.out.lay.size();
         std::string cls, text;
         if ((uint64_t)want[0] >= next_in) {
           cls = "early";
@@ -316,7 +335,7 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
       offering = false;
     }
     if (hook && hook->observe) hook->observe(*dut);
-    tick();
+    tick(false);
     if (ctx->gotError()) {
       res.sim_error = true;
       if (o.print) std::printf("SIMERROR %s: Verilator reported an error at cycle %llu\n", o.unit.c_str(), (unsigned long long)cycle);
@@ -333,6 +352,7 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
     if (tfp && cycle > trace_last) break;
   }
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.cpu_seconds = cpu_seconds_now() - c0;
   res.cycles = cycle;
   if (tfp) tfp->close();
   dut->final();
@@ -358,7 +378,7 @@ TxnResult run_txn(const SceneStageVectors& v, const SceneStageFile* ctx_file, co
     return d;
   }();
   const std::string base = dir + "/" + (o.run_name.empty() ? o.unit : o.run_name);
-  if (!r.passed() && o.write_wave) {
+  if (!r.passed() && o.write_wave && HasTrace<Dut>::value) {
     const uint64_t at = r.mismatches.empty() ? r.cycles : r.mismatches.front().cycle;
     TxnOptions quiet = o;
     quiet.print = false;
@@ -370,16 +390,18 @@ TxnResult run_txn(const SceneStageVectors& v, const SceneStageFile* ctx_file, co
     for (auto& [cls, n] : r.classes) std::printf("  class %-24s %llu\n", cls.c_str(), (unsigned long long)n);
     std::printf("%s: inputs=%llu outputs=%llu (file %llu) errors=%llu\n", o.unit.c_str(), (unsigned long long)r.inputs,
                 (unsigned long long)r.outputs, (unsigned long long)v.out.rows, (unsigned long long)r.errors);
-    std::printf("%s: %llu cycles (%llu busy), %.3f s, %.0f cycles/s (gaps %u%%, stalls %u%%)\n", o.unit.c_str(),
-                (unsigned long long)r.cycles, (unsigned long long)r.busy_cycles, r.seconds,
-                r.seconds > 0 ? (double)r.cycles / r.seconds : 0.0, o.in_gap_pct, o.out_stall_pct);
+    std::printf("%s: %llu cycles (%llu busy), %.3f s, %.0f cycles/s; %.3f CPU s, %.0f cycles per CPU second (gaps %u%%, "
+                "stalls %u%%)\n",
+                o.unit.c_str(), (unsigned long long)r.cycles, (unsigned long long)r.busy_cycles, r.seconds,
+                r.seconds > 0 ? (double)r.cycles / r.seconds : 0.0, r.cpu_seconds,
+                r.cpu_seconds > 0 ? (double)r.cycles / r.cpu_seconds : 0.0, o.in_gap_pct, o.out_stall_pct);
     if (!r.wave.empty()) std::printf("%s: waveform of the first mismatch: %s\n", o.unit.c_str(), r.wave.c_str());
     std::printf("%s\n", r.passed() ? "PASSED" : "FAILED");
   }
   nlohmann::json j{{"unit", o.unit},           {"run", o.run_name},        {"inputs", r.inputs},
                    {"outputs", r.outputs},     {"expected", v.out.rows},   {"errors", r.errors},
                    {"cycles", r.cycles},       {"busy_cycles", r.busy_cycles}, {"seconds", r.seconds},
-                   {"timeout", r.timeout},     {"sim_error", r.sim_error}, {"passed", r.passed()},
+                   {"cpu_seconds", r.cpu_seconds}, {"timeout", r.timeout},     {"sim_error", r.sim_error}, {"passed", r.passed()},
                    {"seed", o.seed},           {"in_gap_pct", o.in_gap_pct}, {"out_stall_pct", o.out_stall_pct},
                    {"classes", r.classes},     {"wave", r.wave}};
   r.summary = base + "_summary.json";

@@ -69,12 +69,14 @@ void print_figures(const Draw& d, const RtlRun& k) {
   const uint64_t cyc = k.r.last_out_cycle > k.r.first_in_cycle ? k.r.last_out_cycle - k.r.first_in_cycle + 1 : 0;
   std::printf("FIGURES %s: %llu triangles (%llu drawn), %llu spans, %llu fragments generated, %llu passed; %llu cycles "
               "first input to last output: %.3f fragments/clock (generated), %.4f triangles/clock; "
-              "Verilator %.0f cycles/s, %.0f fragments/s\n",
+              "Verilator %.0f cycles/s, %.0f fragments/s; per CPU second %.0f cycles, %.0f fragments\n",
               d.name.c_str(), (unsigned long long)d.want[0], (unsigned long long)d.want[1], (unsigned long long)d.want[6],
               (unsigned long long)d.want[7], (unsigned long long)d.want[8], (unsigned long long)cyc,
               cyc ? (double)d.want[7] / (double)cyc : 0.0, cyc ? (double)d.want[0] / (double)cyc : 0.0,
               k.r.seconds > 0 ? (double)k.r.cycles / k.r.seconds : 0.0,
-              k.r.seconds > 0 ? (double)d.want[7] / k.r.seconds : 0.0);
+              k.r.seconds > 0 ? (double)d.want[7] / k.r.seconds : 0.0,
+              k.r.cpu_seconds > 0 ? (double)k.r.cycles / k.r.cpu_seconds : 0.0,
+              k.r.cpu_seconds > 0 ? (double)d.want[7] / k.r.cpu_seconds : 0.0);
   std::printf("FIGURES %s: clocks per triangle %.2f, per span %.2f, per generated fragment %.3f; stall clocks:", d.name.c_str(),
               d.want[0] ? (double)cyc / (double)d.want[0] : 0.0, d.want[6] ? (double)cyc / (double)d.want[6] : 0.0,
               d.want[7] ? (double)cyc / (double)d.want[7] : 0.0);

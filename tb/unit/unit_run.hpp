@@ -50,10 +50,7 @@ struct UnitRun {
 
 template <class T>
 uint64_t flat_word(const T& p, int i, int bits) {
-  uint64_t v = 0;
-  for (int b = 0; b < bits; ++b)
-    if ((port_word(p, (i * bits + b) / 32) >> ((i * bits + b) % 32)) & 1) v |= uint64_t(1) << b;
-  return v;
+  return (uint64_t)port_field(p, i * bits, bits);
 }
 
 template <class Dut>
