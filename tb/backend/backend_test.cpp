@@ -108,33 +108,28 @@ TEST(Backend, DefaultSceneMatchesTheModel) {
 
 // Figures at 1024 x 1024 (docs/rtl.md): the checkerboard face alone (the default scene without
 // its optional bunny) and scenes/bunny.json, zero-latency memory (a response the clock after the
-// request), no gaps, no back-pressure. Not run in CI (about a minute):
-//   build/tb/rtl_backend_test --gtest_also_run_disabled_tests --gtest_filter='Backend.DISABLED_*'
-TEST(Backend, DISABLED_Figures1024) {
+// request), no gaps, no back-pressure. Not run in CI (about a minute in all; each scene is its own
+// test so that one can be timed alone, docs/rtl.md "Co-simulation speed"):
+//   build/tb/rtl_backend_test --gtest_also_run_disabled_tests --gtest_filter='Backend.DISABLED_Figures1024*'
+void figures_1024(const fxr::Scene& sc, const std::string& name) {
+  const Draw d = scene_draw(sc, name);
+  const RtlRun k = run_rtl(d, d.v, Handshake{1, 0, 0, 1, 1, 0}, "backend_" + name);
+  expect_run_matches(d, k, d.name);
+  print_figures(d, k);
+}
+fxr::SceneOptions options_1024(bool no_optional) {
   fxr::SceneOptions so;
   so.width = so.height = 1024;
-  so.no_optional = true;
-  {
-    const Draw d = scene_draw(fxr::default_scene(so), "checkerboard_1024");
-    const RtlRun k = run_rtl(d, d.v, Handshake{1, 0, 0, 1, 1, 0}, "backend_checkerboard_1024");
-    expect_run_matches(d, k, d.name);
-    print_figures(d, k);
-  }
-  fxr::SceneOptions sb;
-  sb.width = sb.height = 1024;
-  {
-    const Draw d = scene_draw(fxr::load_scene(std::string(FXR_SOURCE_DIR) + "/scenes/bunny.json", sb), "bunny_1024");
-    const RtlRun k = run_rtl(d, d.v, Handshake{1, 0, 0, 1, 1, 0}, "backend_bunny_1024");
-    expect_run_matches(d, k, d.name);
-    print_figures(d, k);
-  }
-  {
-    const Draw d = scene_draw(fxr::default_scene(sb), "default_1024");
-    const RtlRun k = run_rtl(d, d.v, Handshake{1, 0, 0, 1, 1, 0}, "backend_default_1024");
-    expect_run_matches(d, k, d.name);
-    print_figures(d, k);
-  }
+  so.no_optional = no_optional;
+  return so;
 }
+TEST(Backend, DISABLED_Figures1024Checkerboard) {
+  figures_1024(fxr::default_scene(options_1024(true)), "checkerboard_1024");
+}
+TEST(Backend, DISABLED_Figures1024Bunny) {
+  figures_1024(fxr::load_scene(std::string(FXR_SOURCE_DIR) + "/scenes/bunny.json", options_1024(false)), "bunny_1024");
+}
+TEST(Backend, DISABLED_Figures1024Default) { figures_1024(fxr::default_scene(options_1024(false)), "default_1024"); }
 
 TEST(Backend, SceneFilesMatchTheModel) {
   int n = 0;

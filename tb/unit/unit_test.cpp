@@ -49,6 +49,19 @@ TEST(Unit, DefaultSceneMatchesTheModel) {
   expect_match(d, b, "default, gaps / back-pressure / latency 1..12");
 }
 
+// The checkerboard face alone at 1024 x 1024 (about a fragment per clock; docs/rtl.md, "Co-simulation
+// speed"): not run in CI (about 10^6 clocks):
+//   build/tb/rtl_unit_test --gtest_also_run_disabled_tests --gtest_filter='Unit.DISABLED_Figures1024Checkerboard'
+TEST(Unit, DISABLED_Figures1024Checkerboard) {
+  fxr::SceneOptions so;
+  so.width = so.height = 1024;
+  so.no_optional = true;
+  const Draw d = scene_draw(fxr::default_scene(so), "unit_checkerboard_1024");
+  const UnitRun a = run(d, d.u, Handshake{1, 0, 0, 1, 1, 0}, "unit_checkerboard_1024");
+  expect_match(d, a, "checkerboard 1024, no gaps");
+  print_figures(d, a);
+}
+
 TEST(Unit, SceneFilesMatchTheModel) {
   int n = 0;
   for (const auto& p : fxr::tb::scene_files()) {
