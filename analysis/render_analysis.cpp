@@ -144,12 +144,12 @@ RenderErrors compare_to_reference(const Scene& sc, const FrameOutput& fo) {
 
 
 // Coverage with the depth test off: the sets of (prim, x, y) of the model and the reference.
-CoverageDiff compare_coverage(const std::vector<Fragment>& mf, const std::vector<RefFragment>& rf) {
+CoverageDiff compare_coverage(const FragmentStore& mf, const std::vector<RefFragment>& rf) {
   CoverageDiff c;
   std::vector<std::tuple<uint32_t, int, int>> a, b;
   a.reserve(mf.size());
   b.reserve(rf.size());
-  for (const auto& f : mf) a.emplace_back(f.prim, f.y, f.x);
+  for (size_t i = 0; i < mf.size(); ++i) a.emplace_back(mf.prim(i), mf.y(i), mf.x(i));
   for (const auto& f : rf) b.emplace_back(f.prim, f.y, f.x);
   std::sort(a.begin(), a.end());
   std::sort(b.begin(), b.end());

@@ -36,7 +36,7 @@ struct CoverageDiff {
   uint64_t model = 0, ref = 0, common = 0, model_only = 0, ref_only = 0;
   nlohmann::json examples = nlohmann::json::array();
 };
-CoverageDiff compare_coverage(const std::vector<Fragment>& mf, const std::vector<RefFragment>& rf);
+CoverageDiff compare_coverage(const FragmentStore& mf, const std::vector<RefFragment>& rf);
 
 // Exact spot checks: for up to n fragments (evenly spaced in draw order), the snapped setup
 // triangles of the fragment's primitive are rebuilt with geometry(), and the model's depth and

@@ -13,8 +13,8 @@ namespace {
 
 // Paints fragments in draw order (the last one that passed the depth test wins); `colour(f)` is
 // the shaded colour of fragment f.
-template <class Frag, class Colour>
-Image paint(const Scene& sc, const std::vector<Frag>& frags, Colour colour) {
+template <class Frags, class Colour>
+Image paint(const Scene& sc, const Frags& frags, Colour colour) {
   const DrawState& st = sc.state;
   Image img(st.viewport_w, st.viewport_h, sc.background);
   const bool textured = sc.u_varying >= 0 && sc.v_varying >= 0;

@@ -12,6 +12,7 @@
 #include "analysis/render_images.hpp"
 #include "analysis/texel_errors.hpp"
 #include "model/stages/texfilter.hpp"
+#include "model/unit/threads.hpp"
 
 namespace fxr {
 
@@ -41,7 +42,9 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
   std::filesystem::create_directories(o.out);
   using clk = std::chrono::steady_clock;
   auto t0 = clk::now();
-  const FrameOutput fo = run_raster_unit(sc.config, sc.state, sc.tris, sc.line_state, sc.lines);
+  ThreadOptions to;
+  to.threads = o.threads;
+  const FrameOutput fo = run_raster_unit(sc.config, sc.state, sc.tris, sc.line_state, sc.lines, to);
   auto t1 = clk::now();
   const RefFrame rf = run_reference(sc.state, sc.tris);
   auto t2 = clk::now();
@@ -60,7 +63,7 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
     Scene sc2 = sc;
     sc2.state = st2;
     sc2.line_state.interp = st2.interp;
-    const FrameOutput fo2 = run_raster_unit(sc.config, st2, sc.tris, sc2.line_state, sc.lines);
+    const FrameOutput fo2 = run_raster_unit(sc.config, st2, sc.tris, sc2.line_state, sc.lines, to);
     const Image img2 = shade_model(sc2, fo2);
     const std::string name = o.affine ? "image_perspective.png" : "image_affine.png";
     write_png(o.out + "/" + name, img2);
@@ -75,7 +78,7 @@ RenderSummary render_with_report(const Scene& sc, const RenderOptions& o) {
   // Coverage: both pipelines with the depth test off.
   DrawState nod = sc.state;
   nod.depth_test = false;
-  const FrameOutput fo_cov = run_raster_unit(sc.config, nod, sc.tris);
+  const FrameOutput fo_cov = run_raster_unit(sc.config, nod, sc.tris, to);
   const RefFrame rf_cov = run_reference(nod, sc.tris);
   const CoverageDiff cov = compare_coverage(fo_cov.fragments, rf_cov.fragments);
   const RenderErrors err = compare_to_reference(sc, fo);

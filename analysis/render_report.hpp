@@ -15,6 +15,7 @@ struct RenderOptions {
   bool affine = false;          // the scene was switched to affine interpolation (names the images)
   bool no_affine_image = false; // skip the second image in the other interpolation mode
   int spot_checks = 2000;       // fragments re-evaluated exactly with GMP
+  int threads = 1;              // model threads (model/unit/threads.hpp: the output does not depend on it)
 };
 
 struct RenderSummary {

@@ -22,7 +22,7 @@ using nlohmann::json;
 struct Opts {
   std::string scene, out, config;
   bool use_default = false, wireframe = false, affine = false, no_bunny = false, no_affine_image = false, quiet = false;
-  int width = 0, height = 0, spot_checks = 2000;
+  int width = 0, height = 0, spot_checks = 2000, threads = 1;
   std::string filter;  // "" (the configuration's tex_addr.filter), nearest, bilinear
 };
 
@@ -134,6 +134,7 @@ int run_into(const Opts& o, const fs::path& tmp) {
   ro.affine = o.affine;
   ro.no_affine_image = o.no_affine_image;
   ro.spot_checks = o.spot_checks;
+  ro.threads = o.threads;
   const fxr::RenderSummary r = fxr::render_with_report(sc, ro);
   const int nv = sc.state.num_varyings;
   if (!o.quiet) {
@@ -176,6 +177,9 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_option("--height", o->height, "override the viewport height (pixels)")->check(CLI::Range(1, 16384));
   sub.add_option("--spot-checks", o->spot_checks, "fragments re-evaluated exactly with GMP (default 2000)")
       ->check(CLI::Range(0, 1000000));
+  sub.add_option("--threads", o->threads,
+                 "model threads (default 1; the output is bit-identical for every count, docs/speed.md)")
+      ->check(CLI::Range(1, 256));
   sub.add_flag("--quiet", o->quiet, "print nothing on success");
   return [o]() { return run(*o); };
 }

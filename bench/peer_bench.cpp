@@ -3,9 +3,15 @@
 //   - llvmpipe: Mesa through OSMesa with LP_NUM_THREADS=0 (rasterises in the calling thread),
 //               context creation, shader compilation and vertex upload excluded; each iteration
 //               is clear + draw + glFinish;
-//   - model:    fxr::run_raster_unit on the default configuration (keeps every Fragment);
+//   - model:    fxr::run_raster_unit on the default configuration (keeps every fragment as a
+//               compact record, model/unit/fragment_store.hpp; a new FrameOutput per frame);
+//   - vector:   the same chain keeping a std::vector<Fragment> (272 bytes per fragment: how
+//               run_raster_unit kept fragments before the compact records), for before / after;
+//   - keep:     the compact records into a FrameOutput reused from frame to frame (a sweep);
 //   - stream:   the same stages (run_raster_unit_to: the stage chain of model/unit/chain.hpp)
-//               streaming fragments into an image.
+//               streaming fragments into an image;
+//   - threads:  run_raster_unit with ThreadOptions::threads 1 and 2 (model/unit/threads.hpp),
+//               fragments kept, measured in wall time and in process CPU time.
 // FXR_BENCH_CONFIG=FILE runs the model benchmarks at that configuration (e.g.
 // tests/golden/config_attr_equals_subpixel.json, the default before the attribute positions of
 // docs/pipeline.md) — to compare a change of the code at a fixed configuration.
@@ -30,6 +36,7 @@
 #include "model/unit/backend.hpp"
 #include "model/unit/raster_unit.hpp"
 #include "model/unit/chain.hpp"
+#include "model/unit/threads.hpp"
 
 using namespace fxr;
 using namespace fxr::peer;
@@ -118,6 +125,57 @@ void BM_Model(benchmark::State& state) {
   state.counters["fragments"] = (double)frags;
 }
 
+// The chain keeping every Fragment in a std::vector (the record before the compact store).
+void BM_ModelVector(benchmark::State& state) {
+  const PeerScene& s = scene((int)state.range(0), (int)state.range(1));
+  const Config& cfg = bench_config();
+  struct VectorSink : FragmentSink {
+    std::vector<Fragment> v;
+    void emit(const Fragment& f) override { v.push_back(f); }
+  };
+  uint64_t frags = 0;
+  for (auto _ : state) {
+    FrameOutput f;
+    VectorSink sink;
+    NoTaps taps;
+    run_raster_unit_to(cfg, s.st, s.tris, f, &sink, taps);
+    frags = f.stats.fragments_generated;
+    benchmark::DoNotOptimize(sink.v.data());
+  }
+  state.SetItemsProcessed((int64_t)state.iterations() * (int64_t)frags);
+  state.counters["fragments"] = (double)frags;
+}
+
+// Compact records into one FrameOutput reused by every frame (its buffers keep their pages).
+void BM_ModelKeep(benchmark::State& state) {
+  const PeerScene& s = scene((int)state.range(0), (int)state.range(1));
+  const Config& cfg = bench_config();
+  FrameOutput f;
+  ThreadOptions one;
+  for (auto _ : state) {
+    run_raster_unit_threads(cfg, s.st, s.tris, f, &f.fragments, nullptr, one);
+    benchmark::DoNotOptimize(f.fragments.data());
+  }
+  state.SetItemsProcessed((int64_t)state.iterations() * (int64_t)f.stats.fragments_generated);
+  state.counters["fragments"] = (double)f.stats.fragments_generated;
+}
+
+// run_raster_unit on range(2) threads, fragments kept (a new FrameOutput per frame, as BM_Model).
+void BM_ModelThreads(benchmark::State& state) {
+  const PeerScene& s = scene((int)state.range(0), (int)state.range(1));
+  const Config& cfg = bench_config();
+  ThreadOptions o;
+  o.threads = (int)state.range(2);
+  uint64_t frags = 0;
+  for (auto _ : state) {
+    const FrameOutput out = run_raster_unit(cfg, s.st, s.tris, o);
+    frags = out.stats.fragments_generated;
+    benchmark::DoNotOptimize(out.fragments.data());
+  }
+  state.SetItemsProcessed((int64_t)state.iterations() * (int64_t)frags);
+  state.counters["fragments"] = (double)frags;
+}
+
 // The model streaming its fragments into an image (FragmentSink), as the float rasterizer and
 // llvmpipe write a framebuffer, instead of keeping a std::vector<Fragment> per frame.
 struct ImageSink : FragmentSink {
@@ -154,7 +212,18 @@ void scene_args(benchmark::internal::Benchmark* b) {
   b->ArgNames({"scene", "varyings"})->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 }
 
+void thread_args(benchmark::internal::Benchmark* b) {
+  for (int id : {kBunny, kPlane})
+    for (int nv : {0, 2})
+      for (int t : {1, 2}) b->Args({id, nv, t});
+  // Wall time decides the speed-up; the reporter also reads the process CPU time.
+  b->ArgNames({"scene", "varyings", "threads"})->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+}
+
 BENCHMARK(BM_Model)->Apply(scene_args);
+BENCHMARK(BM_ModelVector)->Apply(scene_args);
+BENCHMARK(BM_ModelKeep)->Apply(scene_args);
+BENCHMARK(BM_ModelThreads)->Apply(thread_args);
 BENCHMARK(BM_ModelStream)->Apply(scene_args);
 BENCHMARK(BM_Float)->Apply(scene_args);
 BENCHMARK(BM_Llvmpipe)->Apply(scene_args);
@@ -173,10 +242,16 @@ class RatioReporter : public benchmark::ConsoleReporter {
       // Name: BM_<renderer>/scene:<id>/varyings:<n>
       const std::string name = r.benchmark_name();
       const size_t slash = name.find('/');
-      const std::string renderer = name.substr(3, slash - 3);
-      int id = 0, nv = 0;
-      std::sscanf(name.c_str() + slash, "/scene:%d/varyings:%d", &id, &nv);
-      rate[std::string(kSceneNames[id]) + " v" + std::to_string(nv)][renderer] = it->second.value;
+      std::string renderer = name.substr(3, slash - 3);
+      int id = 0, nv = 0, threads = 0;
+      const int got = std::sscanf(name.c_str() + slash, "/scene:%d/varyings:%d/threads:%d", &id, &nv, &threads);
+      const std::string key = std::string(kSceneNames[id]) + " v" + std::to_string(nv);
+      if (got == 3) {  // wall-time rate (items_per_second) and CPU-time rate
+        renderer += std::to_string(threads);
+        const double items = it->second.value * r.real_accumulated_time;
+        rate[key][renderer + "cpu"] = r.cpu_accumulated_time > 0 ? items / r.cpu_accumulated_time : 0.0;
+      }
+      rate[key][renderer] = it->second.value;
     }
   }
 
@@ -191,6 +266,22 @@ class RatioReporter : public benchmark::ConsoleReporter {
       const auto ratio = [](double a, double b) { return b > 0 && a > 0 ? a / b : 0.0; };
       std::printf("%-9s %7.2f %7.2f %7.2f %8.2f %9.4f %9.4f %11.4f %12.4f %10.3f\n", key.c_str(), mo / 1e6, ms / 1e6,
                   fl / 1e6, lp / 1e6, ratio(mo, fl), ratio(mo, lp), ratio(ms, fl), ratio(ms, lp), ratio(fl, lp));
+    }
+    std::printf("\nkeeping fragments (Mfrag/s, CPU time): vector = std::vector<Fragment>, compact = run_raster_unit, "
+                "keep = compact into a reused frame; cost = stream rate / stored rate (goal <= 1.3).\n"
+                "threads (fragments kept, run_raster_unit): wall-time rates, speed-up = 2 threads / 1 thread "
+                "in wall time, cpu = the same ratio in process CPU time (1.0: no work added by threading):\n");
+    std::printf("%-9s %7s %8s %7s %7s %11s %12s %9s %8s %8s %8s %8s\n", "scene", "vector", "compact", "keep", "stream",
+                "cost(cmpct)", "cost(keep)", "vec/cmpct", "thr1", "thr2", "speedup", "cpu");
+    for (const auto& [key, m] : rate) {
+      const auto get = [&](const char* k) { auto it = m.find(k); return it == m.end() ? 0.0 : it->second; };
+      const double vec = get("ModelVector"), mo = get("Model"), kp = get("ModelKeep"), ms = get("ModelStream");
+      const double t1 = get("ModelThreads1"), t2 = get("ModelThreads2"), c1 = get("ModelThreads1cpu"),
+                   c2 = get("ModelThreads2cpu");
+      const auto ratio = [](double a, double b) { return b > 0 && a > 0 ? a / b : 0.0; };
+      std::printf("%-9s %7.2f %8.2f %7.2f %7.2f %11.3f %12.3f %9.2f %8.2f %8.2f %8.3f %8.3f\n", key.c_str(), vec / 1e6,
+                  mo / 1e6, kp / 1e6, ms / 1e6, ratio(ms, mo), ratio(ms, kp), ratio(mo, vec), t1 / 1e6, t2 / 1e6,
+                  ratio(t2, t1), ratio(c2, c1));
     }
   }
 };

@@ -24,7 +24,7 @@ void frame_begin(const Config& cfg, const DrawState& st, FrameOutput& f) {
                       std::to_string(st.viewport_h) + " is empty");
   f.width = st.viewport_w;
   f.height = st.viewport_h;
-  f.fragments.clear();
+  f.fragments.shape(st.num_varyings);
   f.depth.assign((size_t)f.width * f.height, depth_max_code(cfg.raster));
   f.stats = RasterStats{};
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "model/config/config.hpp"
+#include "model/unit/fragment_store.hpp"
 #include "model/unit/io.hpp"
 #include "model/unit/raster_unit.hpp"
 #include "model/stages/setup.hpp"
@@ -32,16 +33,21 @@ class FragmentSink {
  public:
   virtual ~FragmentSink() = default;
   virtual void emit(const Fragment& f) = 0;
+  // Called once by each chain that will emit into the sink (triangles, then line segments, whose
+  // draw state may have more varyings), before its first emit.
+  virtual void draw_state(const DrawState&) {}
 };
 
-// Holds every fragment: appends them to a vector (FrameOutput::fragments in run_raster_unit).
+// Holds every fragment: appends them to a compact store (FrameOutput::fragments in
+// run_raster_unit), widened to the varyings of every draw it receives.
 class KeepFragments final : public FragmentSink {
  public:
-  explicit KeepFragments(std::vector<Fragment>& out) : out_(out) {}
+  explicit KeepFragments(FragmentStore& out) : out_(out) {}
   void emit(const Fragment& f) override { out_.push_back(f); }
+  void draw_state(const DrawState& st) override { out_.widen(st.num_varyings); }
 
  private:
-  std::vector<Fragment>& out_;
+  FragmentStore& out_;
 };
 
 // Contract: as raster_triangle, but passing fragments go to `sink` (nullptr: none, and the

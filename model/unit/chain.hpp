@@ -21,6 +21,7 @@
 // (docs/pipeline.md, "Statistics: primitives, pieces, setup triangles").
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -133,14 +134,21 @@ class FragmentChain {
   // `f` must be prepared (frame_begin) before: the chain tests against f.depth. sink nullptr:
   // fragments are counted and depth-tested but not divided nor emitted (no varyings computed).
   FragmentChain(const Config& cfg, const DrawState& st, FrameOutput& f, FragmentSink* sink, Taps& taps)
+      : FragmentChain(cfg, st, f.stats, f.depth.data(), f.width, sink, taps) {}
+  // The same on a depth buffer of `width` columns (from the viewport origin) and fragment
+  // counters `stats` (the threaded unit, model/unit/threads.hpp: one chain per thread).
+  FragmentChain(const Config& cfg, const DrawState& st, RasterStats& stats, uint32_t* depth, int width,
+                FragmentSink* sink, Taps& taps)
       : taps_(taps),
-        stats_(f.stats),
+        stats_(stats),
         sink_(sink),
         setup_(cfg, st, sink != nullptr),
         traverse_(cfg, st),
         interp_(cfg, st, sink != nullptr),
-        depth_(cfg, st, DepthBufferView{f.depth.data(), f.width, st.viewport_x, st.viewport_y}),
-        divide_(cfg, st, sink != nullptr) {}
+        depth_(cfg, st, DepthBufferView{depth, width, st.viewport_x, st.viewport_y}),
+        divide_(cfg, st, sink != nullptr) {
+    if (sink) sink->draw_state(st);
+  }
 
   // Contract: as fxr::raster_triangle_to() (model/unit/backend.hpp).
   SetupOutcome run(const SetupTriangle& tri) {
@@ -148,26 +156,44 @@ class FragmentChain {
     return setup_.step(tri, [&](const TriangleEquations& eq) {
       taps_.template out<SetupStage>(eq);
       taps_.template in<TraverseStage>(eq);
-      traverse_.step(eq, [&](const Span& sp) {
-        taps_.template out<TraverseStage>(sp);
-        stats_.fragments_generated += (uint64_t)(sp.x1 - sp.x0 + 1);
-        taps_.template in<InterpStage>(sp);
-        interp_.step(eq, sp, [&](const PlaneSample& ps) {
-          taps_.template out<InterpStage>(ps);
-          taps_.template in<DepthStage>(ps);
-          const bool pass = depth_.step(ps, [&](const PlaneSample& p) {
-            taps_.template out<DepthStage>(p);
-            if (!sink_) return;
-            taps_.template in<DivideStage>(p);
-            divide_.step(p, [&](const Fragment& fr) {
-              taps_.template out<DivideStage>(fr);
-              sink_->emit(fr);
-            });
-          });
-          if (pass) ++stats_.fragments_depth_pass;
-          else ++stats_.fragments_depth_fail;
+      traverse_.step(eq, [&](const Span& sp) { span(eq, sp); });
+    });
+  }
+
+  // Contract: stages 6–10 of a set-up triangle restricted to rows y0 … y1: exactly the spans of
+  // those rows that run() would traverse (traversal starts a row with a direct evaluation, so
+  // the rows do not depend on where it starts), through the same stages.
+  void rows(const TriangleEquations& eq, int y0, int y1) {
+    TriSetup t = eq.edges;
+    t.y0 = std::max(t.y0, y0);
+    t.y1 = std::min(t.y1, y1);
+    Span sp;
+    sp.prim = eq.prim;
+    traverse(t, [&](int j, int xb, int xe) {
+      sp.y = j, sp.x0 = xb, sp.x1 = xe;
+      span(eq, sp);
+    });
+  }
+
+  // Stages 7–10 on one span of `eq`.
+  void span(const TriangleEquations& eq, const Span& sp) {
+    taps_.template out<TraverseStage>(sp);
+    stats_.fragments_generated += (uint64_t)(sp.x1 - sp.x0 + 1);
+    taps_.template in<InterpStage>(sp);
+    interp_.step(eq, sp, [&](const PlaneSample& ps) {
+      taps_.template out<InterpStage>(ps);
+      taps_.template in<DepthStage>(ps);
+      const bool pass = depth_.step(ps, [&](const PlaneSample& p) {
+        taps_.template out<DepthStage>(p);
+        if (!sink_) return;
+        taps_.template in<DivideStage>(p);
+        divide_.step(p, [&](const Fragment& fr) {
+          taps_.template out<DivideStage>(fr);
+          sink_->emit(fr);
         });
       });
+      if (pass) ++stats_.fragments_depth_pass;
+      else ++stats_.fragments_depth_fail;
     });
   }
 
@@ -180,6 +206,44 @@ class FragmentChain {
   InterpStage interp_;
   DepthStage depth_;
   DivideStage divide_;
+};
+
+// The primitive accounting of run_raster_unit. count_geometry: a primitive that left the
+// geometry stages with `g` counts as culled / rejected unless it emitted triangles (true).
+inline bool count_geometry(RasterStats& s, GeomOutcome g) {
+  switch (g) {
+    case GeomOutcome::CulledOutside: ++s.prims_culled_outside; return false;
+    case GeomOutcome::RejectedNaN: ++s.prims_rejected_nan; return false;
+    case GeomOutcome::RejectedInf: ++s.prims_rejected_inf; return false;
+    case GeomOutcome::RejectedRange: ++s.prims_rejected_range; return false;
+    case GeomOutcome::Emitted: break;
+  }
+  return true;
+}
+// Then its setup triangles' outcomes decide (range also set when a piece was dropped in stage 3
+// or 4): drawn if any was rasterised, else by the first reason in the order range > backface >
+// no samples > zero area (all pieces of one primitive share its facing). add() also counts
+// the setup triangle in s.tris.
+struct PrimDisposition {
+  bool drawn = false, range = false, back = false, nosamp = false;
+  void add(RasterStats& s, SetupOutcome o) {
+    ++s.tris.in;
+    switch (o) {
+      case SetupOutcome::Ok: drawn = true; ++s.tris.drawn; break;
+      case SetupOutcome::RejectedRange: range = true; ++s.tris.range; break;
+      case SetupOutcome::CulledBackface: back = true; ++s.tris.backface; break;
+      case SetupOutcome::CulledNoSamples: nosamp = true; ++s.tris.no_samples; break;
+      case SetupOutcome::CulledZeroArea: ++s.tris.zero_area; break;
+    }
+  }
+  void count(RasterStats& s, bool no_pieces) const {
+    if (drawn) ++s.prims_drawn;
+    else if (range) ++s.prims_rejected_range;
+    else if (back) ++s.prims_culled_backface;
+    else if (nosamp) ++s.prims_culled_no_samples;
+    else if (no_pieces) ++s.prims_culled_outside;  // geometry emitted nothing
+    else ++s.prims_culled_zero_area;
+  }
 };
 
 // Stages 1–10 with the primitive accounting of run_raster_unit.
@@ -195,35 +259,15 @@ class UnitChain {
   // or 4, or rejected by setup; all pieces of one primitive share its facing). Its setup
   // triangles count once each by their setup outcome (s.tris, the unit's tri_* counters).
   void draw(const ClipTriangle& tri, uint32_t prim) {
-    RasterStats& s = stats_;
-    ++s.prims_in;
+    ++stats_.prims_in;
     in_.prim = prim;
     in_.tri = tri;
     pieces_.clear();
-    switch (geometry_.run(in_, pieces_, s)) {
-      case GeomOutcome::CulledOutside: ++s.prims_culled_outside; return;
-      case GeomOutcome::RejectedNaN: ++s.prims_rejected_nan; return;
-      case GeomOutcome::RejectedInf: ++s.prims_rejected_inf; return;
-      case GeomOutcome::RejectedRange: ++s.prims_rejected_range; return;
-      case GeomOutcome::Emitted: break;
-    }
-    bool drawn = false, range = geometry_.pieces_rejected() > 0, back = false, nosamp = false;
-    for (const SetupTriangle& t : pieces_) {
-      ++s.tris.in;
-      switch (fragments_.run(t)) {
-        case SetupOutcome::Ok: drawn = true; ++s.tris.drawn; break;
-        case SetupOutcome::RejectedRange: range = true; ++s.tris.range; break;
-        case SetupOutcome::CulledBackface: back = true; ++s.tris.backface; break;
-        case SetupOutcome::CulledNoSamples: nosamp = true; ++s.tris.no_samples; break;
-        case SetupOutcome::CulledZeroArea: ++s.tris.zero_area; break;
-      }
-    }
-    if (drawn) ++s.prims_drawn;
-    else if (range) ++s.prims_rejected_range;
-    else if (back) ++s.prims_culled_backface;
-    else if (nosamp) ++s.prims_culled_no_samples;
-    else if (pieces_.empty()) ++s.prims_culled_outside;  // geometry emitted nothing
-    else ++s.prims_culled_zero_area;
+    if (!count_geometry(stats_, geometry_.run(in_, pieces_, stats_))) return;
+    PrimDisposition d;
+    d.range = geometry_.pieces_rejected() > 0;
+    for (const SetupTriangle& t : pieces_) d.add(stats_, fragments_.run(t));
+    d.count(stats_, pieces_.empty());
   }
 
  private:

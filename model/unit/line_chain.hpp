@@ -45,7 +45,9 @@ class LineChain {
         traverse_(cfg, st),
         interp_(cfg, st, sink != nullptr),
         depth_(cfg, st, DepthBufferView{f.depth.data(), f.width, st.viewport_x, st.viewport_y}),
-        divide_(cfg, st, sink != nullptr) {}
+        divide_(cfg, st, sink != nullptr) {
+    if (sink) sink->draw_state(st);
+  }
 
   // Contract: one input segment through every stage; it counts once in stats.lines: drawn (≥ 1
   // pixel inside viewport ∩ scissor), culled_outside, culled_no_pixels or rejected_*.
@@ -158,6 +160,15 @@ class LineChain {
   InputLine in_;
 };
 
+// Contract: each segment through LineChain into the prepared frame `f`, segment k with the
+// primitive index first_prim + k.
+template <class Taps = NoTaps>
+void draw_lines(const Config& cfg, const DrawState& line_st, const std::vector<ClipLine>& lines, size_t first_prim,
+                FrameOutput& f, FragmentSink* sink, Taps& taps) {
+  LineChain<Taps> chain(cfg, line_st, f, sink, taps);
+  for (size_t k = 0; k < lines.size(); ++k) chain.draw(lines[k], (uint32_t)(first_prim + k));
+}
+
 // Contract: a draw of triangles followed by segments into one frame (one depth buffer): the
 // triangles as run_raster_unit_to, then each segment through LineChain, segment k with the
 // primitive index tris.size() + k. Prepares `f` (frame_begin).
@@ -166,8 +177,7 @@ void run_raster_unit_to(const Config& cfg, const DrawState& st, const std::vecto
                         const DrawState& line_st, const std::vector<ClipLine>& lines, FrameOutput& f,
                         FragmentSink* sink, Taps& taps) {
   run_raster_unit_to(cfg, st, tris, f, sink, taps);
-  LineChain<Taps> chain(cfg, line_st, f, sink, taps);
-  for (size_t k = 0; k < lines.size(); ++k) chain.draw(lines[k], (uint32_t)(tris.size() + k));
+  draw_lines(cfg, line_st, lines, tris.size(), f, sink, taps);
 }
 
 }  // namespace fxr

@@ -5,13 +5,15 @@
 #include <vector>
 
 #include "model/config/config.hpp"
+#include "model/unit/fragment_store.hpp"
 #include "model/unit/io.hpp"
 
 namespace fxr {
 
 struct FrameOutput {
   int width = 0, height = 0;           // the viewport size
-  std::vector<Fragment> fragments;     // fragments that passed the depth test, in draw order
+  FragmentStore fragments;             // fragments that passed the depth test, in draw order
+                                       // (compact records: model/unit/fragment_store.hpp)
   std::vector<uint32_t> depth;         // final depth buffer codes, row 0 at the bottom, w × h
   RasterStats stats;
 };

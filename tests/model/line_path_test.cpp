@@ -327,7 +327,7 @@ TEST(LinePath, ReversedSegmentGivesIdenticalFragments) {
       std::sort(v.begin(), v.end(), [](const Fragment& p, const Fragment& q) { return p.x != q.x ? p.x < q.x : p.y < q.y; });
       return v;
     };
-    const auto fa = key(a.fragments), fb = key(b.fragments);
+    const auto fa = key(a.fragments.to_vector()), fb = key(b.fragments.to_vector());
     ASSERT_EQ(fa.size(), fb.size());
     for (size_t i = 0; i < fa.size(); ++i) {
       ++compared;

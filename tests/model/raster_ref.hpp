@@ -101,7 +101,7 @@ inline std::vector<Fragment> all_fragments(const Config& cfg, DrawState st, cons
   frame_begin(cfg, st, f);
   const SetupOutcome r = raster_triangle(cfg, st, t, f);
   if (o) *o = r;
-  return f.fragments;
+  return f.fragments.to_vector();
 }
 
 }  // namespace fxr::ref

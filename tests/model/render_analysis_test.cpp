@@ -58,12 +58,14 @@ TEST(ErrorStats, UlpIsThePowerOfTwoOfTheValuesBinade) {
 }
 
 TEST(RenderAnalysis, CoverageDiffCountsTheSymmetricDifference) {
-  std::vector<fxr::Fragment> m(3);
+  fxr::FragmentStore m(0);
   std::vector<fxr::RefFragment> r(3);
   for (int i = 0; i < 3; ++i) {
-    m[i].x = r[i].x = i;
-    m[i].y = r[i].y = 7;
-    m[i].prim = r[i].prim = 1;
+    fxr::Fragment f;
+    f.x = r[i].x = i;
+    f.y = r[i].y = 7;
+    f.prim = r[i].prim = 1;
+    m.push_back(f);
   }
   fxr::CoverageDiff same = fxr::compare_coverage(m, r);
   EXPECT_EQ(same.common, 3u);

@@ -1,0 +1,216 @@
+// model/unit/fragment_store.hpp — the fragments of a frame as compact fixed-stride records
+// (FrameOutput::fragments). docs/speed.md, "Compact fragment records".
+//
+// A Fragment (model/unit/io.hpp) holds kMaxVaryings FxFloats: 272 bytes whatever the draw. The
+// store keeps only what the draw has: a record is kFragmentHeaderBytes (prim, x, y, depth as
+// 32-bit words) plus kFragmentVaryingBytes per active varying (the significand as 32 bits —
+// raster.varying_out_sig_bits ≤ kStoredSigBits, checked when the store is shaped — and the
+// exponent with the sign in one 32-bit word). With 2 varyings a record is 32 bytes instead of 272.
+// Records live in one malloc'd byte buffer grown by realloc (glibc moves a large block with
+// mremap, no copy), never zero-filled.
+//
+// The store reads like a std::vector<Fragment> of values: size(), operator[] and iteration
+// decode a record into a Fragment (var[k] = 0 for k ≥ num_varyings, as the model leaves them).
+#pragma once
+
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <iterator>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "model/unit/io.hpp"
+
+namespace fxr {
+
+// Record layout (bytes). The header: prim, x, y, depth, one 32-bit word each.
+inline constexpr int kFragmentHeaderWords = 4;
+inline constexpr int kFragmentHeaderBytes = kFragmentHeaderWords * 4;
+// One varying: significand (32 bits), exponent·2 + sign (32 bits, two's complement).
+inline constexpr int kStoredSigBits = 32;
+inline constexpr int kFragmentVaryingBytes = 8;
+
+class FragmentStore {
+ public:
+  FragmentStore() = default;
+  explicit FragmentStore(int num_varyings) { shape(num_varyings); }
+  FragmentStore(const FragmentStore& o) { *this = o; }
+  FragmentStore(FragmentStore&& o) noexcept { swap(o); }
+  FragmentStore& operator=(const FragmentStore& o) {
+    if (this == &o) return *this;
+    nv_ = o.nv_;
+    stride_ = o.stride_;
+    n_ = 0;
+    reserve(o.n_);
+    if (o.n_) std::memcpy(buf_, o.buf_, o.n_ * stride_);
+    n_ = o.n_;
+    return *this;
+  }
+  FragmentStore& operator=(FragmentStore&& o) noexcept {
+    swap(o);
+    return *this;
+  }
+  ~FragmentStore() { std::free(buf_); }
+  void swap(FragmentStore& o) noexcept {
+    std::swap(buf_, o.buf_), std::swap(cap_, o.cap_), std::swap(n_, o.n_);
+    std::swap(nv_, o.nv_), std::swap(stride_, o.stride_);
+  }
+
+  // Contract: empties the store and sets the record shape (0 ≤ num_varyings ≤ kMaxVaryings);
+  // the buffer's capacity is kept (a frame renders into the memory of the last one).
+  void shape(int num_varyings) {
+    if (num_varyings < 0 || num_varyings > kMaxVaryings)
+      throw std::invalid_argument("FragmentStore: num_varyings " + std::to_string(num_varyings) + " outside 0.." +
+                                  std::to_string(kMaxVaryings));
+    const size_t stride = (size_t)kFragmentHeaderBytes + (size_t)num_varyings * kFragmentVaryingBytes;
+    if (stride != stride_) cap_ = cap_ * stride_ / stride;  // the same bytes, counted in new records
+    nv_ = num_varyings;
+    stride_ = stride;
+    n_ = 0;
+  }
+  // Contract: num_varyings > num_varyings(): re-encodes the records held to the wider shape (their
+  // extra varyings 0, as a Fragment leaves them); else nothing. A frame whose line segments
+  // have more varyings than its triangles (FragmentSink::draw_state).
+  void widen(int num_varyings) {
+    if (num_varyings <= nv_) return;
+    FragmentStore w(num_varyings);
+    w.reserve(n_);
+    for (size_t i = 0; i < n_; ++i) w.push_back((*this)[i]);
+    swap(w);
+  }
+  int num_varyings() const { return nv_; }
+  size_t record_bytes() const { return stride_; }
+
+  size_t size() const { return n_; }
+  bool empty() const { return n_ == 0; }
+  void clear() { n_ = 0; }
+  void reserve(size_t n) {
+    if (n > cap_) grow_to(n);
+  }
+  // The raw records (size() · record_bytes() bytes), for a bulk copy between stores of one shape.
+  const uint8_t* data() const { return buf_; }
+
+  // Contract: appends f (its first num_varyings() varyings). Throws std::logic_error if a
+  // significand needs more than kStoredSigBits bits or an exponent more than 30 bits (the
+  // model's outputs never do: raster.varying_out_sig_bits ≤ 32, exponents docs/pipeline.md).
+  void push_back(const Fragment& f) {
+    if (n_ == cap_) grow_to(n_ + 1);
+    uint8_t* p = buf_ + n_ * stride_;
+    const uint32_t h[kFragmentHeaderWords] = {f.prim, (uint32_t)f.x, (uint32_t)f.y, f.depth};
+    std::memcpy(p, h, sizeof h);
+    p += kFragmentHeaderBytes;
+    for (int k = 0; k < nv_; ++k, p += kFragmentVaryingBytes) {
+      const FxFloat& v = f.var[k];
+      if ((v.sig >> kStoredSigBits) != 0 || v.exp > kMaxExp || v.exp < -kMaxExp - 1) unstorable(v);
+      const uint32_t w[2] = {(uint32_t)v.sig, (uint32_t)(v.exp * 2) | (uint32_t)v.neg};
+      std::memcpy(p, w, sizeof w);
+    }
+    ++n_;
+  }
+
+  // Contract: appends records [first, first + count) of `o` (same num_varyings) in one copy.
+  void append(const FragmentStore& o, size_t first, size_t count) {
+    if (o.nv_ != nv_) throw std::logic_error("FragmentStore::append: stores of different shapes");
+    reserve(n_ + count);
+    if (count) std::memcpy(buf_ + n_ * stride_, o.buf_ + first * o.stride_, count * stride_);
+    n_ += count;
+  }
+
+  // The accessors of a record without decoding the whole Fragment.
+  uint32_t prim(size_t i) const { return word(i, 0); }
+  int32_t x(size_t i) const { return (int32_t)word(i, 1); }
+  int32_t y(size_t i) const { return (int32_t)word(i, 2); }
+  uint32_t depth(size_t i) const { return word(i, 3); }
+  FxFloat var(size_t i, int k) const {
+    uint32_t w[2];
+    std::memcpy(w, buf_ + i * stride_ + kFragmentHeaderBytes + (size_t)k * kFragmentVaryingBytes, sizeof w);
+    FxFloat v;
+    v.sig = w[0];
+    v.neg = (w[1] & 1u) != 0;
+    v.exp = (int32_t)w[1] >> 1;  // arithmetic shift (C++20 defines it; every C++17 target here does)
+    return v;
+  }
+
+  Fragment operator[](size_t i) const {
+    Fragment f;
+    uint32_t h[kFragmentHeaderWords];
+    std::memcpy(h, buf_ + i * stride_, sizeof h);
+    f.prim = h[0], f.x = (int32_t)h[1], f.y = (int32_t)h[2], f.depth = h[3];
+    for (int k = 0; k < nv_; ++k) f.var[k] = var(i, k);
+    return f;
+  }
+  Fragment at(size_t i) const {
+    if (i >= n_) throw std::out_of_range("FragmentStore::at");
+    return (*this)[i];
+  }
+  Fragment front() const { return (*this)[0]; }
+  Fragment back() const { return (*this)[n_ - 1]; }
+
+  // Iteration by value: `for (const Fragment& f : store)` binds each decoded record.
+  class const_iterator {
+   public:
+    using iterator_category = std::random_access_iterator_tag;
+    using value_type = Fragment;
+    using difference_type = std::ptrdiff_t;
+    using pointer = void;
+    using reference = Fragment;
+    const_iterator(const FragmentStore* s, size_t i) : s_(s), i_(i) {}
+    Fragment operator*() const { return (*s_)[i_]; }
+    Fragment operator[](difference_type d) const { return (*s_)[i_ + d]; }
+    const_iterator& operator++() { ++i_; return *this; }
+    const_iterator operator++(int) { const_iterator t = *this; ++i_; return t; }
+    const_iterator& operator--() { --i_; return *this; }
+    const_iterator& operator+=(difference_type d) { i_ += d; return *this; }
+    const_iterator& operator-=(difference_type d) { i_ -= d; return *this; }
+    const_iterator operator+(difference_type d) const { return {s_, i_ + d}; }
+    const_iterator operator-(difference_type d) const { return {s_, i_ - d}; }
+    difference_type operator-(const const_iterator& o) const { return (difference_type)i_ - (difference_type)o.i_; }
+    bool operator==(const const_iterator& o) const { return i_ == o.i_; }
+    bool operator!=(const const_iterator& o) const { return i_ != o.i_; }
+    bool operator<(const const_iterator& o) const { return i_ < o.i_; }
+
+   private:
+    const FragmentStore* s_;
+    size_t i_;
+  };
+  const_iterator begin() const { return {this, 0}; }
+  const_iterator end() const { return {this, n_}; }
+
+  std::vector<Fragment> to_vector() const { return std::vector<Fragment>(begin(), end()); }
+
+ private:
+  static constexpr int kMaxExp = (1 << 30) - 1;
+
+  uint32_t word(size_t i, int w) const {
+    uint32_t v;
+    std::memcpy(&v, buf_ + i * stride_ + (size_t)w * 4, 4);
+    return v;
+  }
+  [[noreturn]] static void unstorable(const FxFloat& v);
+  void grow_to(size_t n) {
+    if (stride_ == 0) throw std::logic_error("FragmentStore: push before shape()");
+    size_t c = cap_ ? cap_ : kFirstRecords;
+    while (c < n) c *= 2;
+    void* p = std::realloc(buf_, c * stride_);
+    if (!p) throw std::bad_alloc();
+    buf_ = (uint8_t*)p;
+    cap_ = c;
+  }
+  static constexpr size_t kFirstRecords = 4096;
+
+  uint8_t* buf_ = nullptr;
+  size_t cap_ = 0, n_ = 0;  // in records
+  int nv_ = 0;
+  size_t stride_ = 0;       // 0: not shaped
+};
+
+inline void FragmentStore::unstorable(const FxFloat& v) {
+  throw std::logic_error("FragmentStore: varying (sig " + std::to_string(v.sig) + ", exp " + std::to_string(v.exp) +
+                         ") does not fit the compact record (" + std::to_string(kStoredSigBits) +
+                         "-bit significand, 31-bit exponent)");
+}
+
+}  // namespace fxr
