@@ -41,9 +41,9 @@ LineChecks line_checks(const Scene& sc, const FrameOutput& fo, int n) {
   c.var_ulp.resize(nv);
   c.ideal_var_ulp.resize(nv);
   const uint32_t ntris = (uint32_t)sc.tris.size();
-  std::vector<const Fragment*> frags;
+  std::vector<Fragment> frags;  // the line fragments (decoded records: few beside the triangles')
   for (const Fragment& f : fo.fragments)
-    if (f.prim >= ntris) frags.push_back(&f);
+    if (f.prim >= ntris) frags.push_back(f);
   c.fragments = frags.size();
   if (frags.empty() || n <= 0) return c;
 
@@ -68,7 +68,7 @@ LineChecks line_checks(const Scene& sc, const FrameOutput& fo, int n) {
 
   const size_t step = std::max<size_t>(1, frags.size() / (size_t)n);
   for (size_t i = 0; i < frags.size(); i += step) {
-    const Fragment& f = *frags[i];
+    const Fragment& f = frags[i];
     const mpq_class cx = mpq_class(2 * (long)f.x + 1, 2), cy = mpq_class(2 * (long)f.y + 1, 2);
     const mpq_class got_z = mpq_class(mpz_class((unsigned long)f.depth), mpz_class(M.get_num()));
     // Level 1: the own segment.
