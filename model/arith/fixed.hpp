@@ -225,10 +225,66 @@ struct Normalized {
   bool inexact = false;  // bits were dropped (only when the input had more than `bits` bits)
 };
 
-// Contract: normalises x > 0 to a `bits`-bit significand with its msb set (1 ≤ bits ≤ 64).
-//   Drops low bits by rounding mode r; if rounding carries out (sig == 2^bits), renormalises
-//   (sig = 2^(bits−1), exp + 1). x == 0 gives sig 0, exp 0.
-inline Normalized normalize(u128 x, int bits, Round r) {
+namespace detail {
+
+// normalize() for Round::HalfEven and 1 ≤ bits ≤ 63 in 64-bit words (docs/speed.md "The
+// normalisation in 64-bit words"): the leading-zero count of the high (or, when it is 0, the low)
+// word places the significand; the dropped bits are compared with a half in at most two words;
+// the rounded significand is one 64-bit add. The same result as the generic u128 path below for
+// every x < 2^127 (Normalize64.* in tests/model/fixed_test.cpp).
+inline Normalized normalize_rne64(u128 x, int bits) {
+  Normalized n;
+  const uint64_t hi = (uint64_t)(x >> 64), lo = (uint64_t)x;
+  uint64_t q;
+  int cmp;  // dropped bits vs half an ulp of q: < 0, == 0 (a tie), > 0
+  if (hi == 0) {
+    if (lo == 0) return n;
+    const int m = 63 - __builtin_clzll(lo);
+    n.exp = m;
+    const int shift = m - (bits - 1);
+    if (shift <= 0) {
+      n.sig = lo << (-shift);
+      return n;
+    }
+    q = lo >> shift;  // 1 ≤ shift ≤ 63
+    const uint64_t rem = lo & ((uint64_t{1} << shift) - 1), half = uint64_t{1} << (shift - 1);
+    n.inexact = rem != 0;
+    cmp = rem > half ? 1 : rem == half ? 0 : -1;
+  } else {
+    const int mh = 63 - __builtin_clzll(hi);
+    n.exp = 64 + mh;
+    const int shift = n.exp - (bits - 1);  // ≥ 2 (bits ≤ 63)
+    if (shift >= 64) {                     // the significand lies in hi
+      const int s = shift - 64;
+      if (s == 0) {
+        q = hi;
+        n.inexact = lo != 0;
+        const uint64_t half = uint64_t{1} << 63;
+        cmp = lo > half ? 1 : lo == half ? 0 : -1;
+      } else {
+        q = hi >> s;
+        const uint64_t rem = hi & ((uint64_t{1} << s) - 1), half = uint64_t{1} << (s - 1);
+        n.inexact = rem != 0 || lo != 0;
+        cmp = rem > half ? 1 : rem < half ? -1 : lo != 0 ? 1 : 0;
+      }
+    } else {  // 2 ≤ shift ≤ 63: q takes bits of both words
+      q = (hi << (64 - shift)) | (lo >> shift);
+      const uint64_t rem = lo & ((uint64_t{1} << shift) - 1), half = uint64_t{1} << (shift - 1);
+      n.inexact = rem != 0;
+      cmp = rem > half ? 1 : rem == half ? 0 : -1;
+    }
+  }
+  q += rne_round_up(cmp, (q & 1) != 0) ? 1 : 0;
+  if (q >> bits) {  // carry out of rounding: 1.111… → 10.000…
+    q >>= 1;
+    n.exp += 1;
+  }
+  n.sig = q;
+  return n;
+}
+
+// The generic path of normalize() (any rounding mode, bits ≤ 64, x < 2^127).
+inline Normalized normalize_u128(u128 x, int bits, Round r) {
   Normalized n;
   if (x == 0) return n;
   const int m = msb_index(x);
@@ -246,6 +302,17 @@ inline Normalized normalize(u128 x, int bits, Round r) {
   }
   n.sig = (uint64_t)s;
   return n;
+}
+
+}  // namespace detail
+
+// Contract: normalises x > 0 (x < 2^127) to a `bits`-bit significand with its msb set
+//   (1 ≤ bits ≤ 64). Drops low bits by rounding mode r; if rounding carries out (sig == 2^bits),
+//   renormalises (sig = 2^(bits−1), exp + 1). x == 0 gives sig 0, exp 0. Round::HalfEven with
+//   bits ≤ 63 (every stage's use) takes the 64-bit-word path, the same results.
+inline Normalized normalize(u128 x, int bits, Round r) {
+  if (r == Round::HalfEven && bits <= 63) return detail::normalize_rne64(x, bits);
+  return detail::normalize_u128(x, bits, r);
 }
 
 }  // namespace fxr

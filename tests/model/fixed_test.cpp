@@ -95,3 +95,84 @@ TEST(Fixed, NormalizeKeepsLeadingOneAndRoundsCarryOut) {
   EXPECT_EQ(clz64(0), 64);
   EXPECT_EQ(clz128(1), 127);
 }
+
+// ---- the 64-bit-word normalisation (docs/speed.md "The normalisation in 64-bit words") ------
+
+namespace {
+
+// x rounded (RNE) to `bits` significant bits by GMP: the significand and the msb index after
+// a carry-out, and whether bits were dropped.
+Normalized ref_normalize(u128 x, int bits) {
+  Normalized n;
+  if (x == 0) return n;
+  const mpz_class ex = to_mpz((i128)x);
+  const int m = (int)mpz_sizeinbase(ex.get_mpz_t(), 2) - 1;
+  const int shift = m - (bits - 1);
+  mpz_class s = shift > 0 ? ref_round(ex, shift, Round::HalfEven) : mpz_class(ex << (-shift));
+  n.exp = m;
+  n.inexact = shift > 0 && mpz_class(s << shift) != ex;
+  if ((int)mpz_sizeinbase(s.get_mpz_t(), 2) > bits) s >>= 1, n.exp += 1;
+  n.sig = (uint64_t)std::stoull(s.get_str());
+  return n;
+}
+
+// Both paths and GMP agree on x at `bits`; returns false (with a message) on the first mismatch.
+::testing::AssertionResult same_normalize(u128 x, int bits) {
+  const Normalized f = detail::normalize_rne64(x, bits), g = detail::normalize_u128(x, bits, Round::HalfEven);
+  const Normalized r = ref_normalize(x, bits);
+  const Normalized* all[] = {&f, &g};
+  for (const Normalized* p : all)
+    if (p->sig != r.sig || p->exp != r.exp || p->inexact != r.inexact)
+      return ::testing::AssertionFailure() << "x = 0x" << std::hex << (uint64_t)(x >> 64) << "_" << (uint64_t)x
+                                           << std::dec << " bits " << bits << ": got sig " << p->sig << " exp "
+                                           << p->exp << " inexact " << p->inexact << ", GMP sig " << r.sig
+                                           << " exp " << r.exp << " inexact " << r.inexact;
+  return ::testing::AssertionSuccess();
+}
+
+// A value with its msb at m (0 ≤ m ≤ 126), random below.
+u128 random_at_msb(std::mt19937_64& rng, int m) {
+  const u128 r = ((u128)rng() << 64) | rng();
+  return ((u128)1 << m) | (m == 0 ? 0 : (r & ((((u128)1) << m) - 1)));
+}
+
+}  // namespace
+
+// Every msb position (both words, the word boundary) × every width, random low bits.
+TEST(Normalize64, EqualsTheU128PathAndGmpOnRandomValuesAtEveryMsbAndWidth) {
+  std::mt19937_64 rng(64);
+  for (int bits = 1; bits <= 63; ++bits)
+    for (int m = 0; m <= 126; ++m)
+      for (int k = 0; k < 12; ++k) ASSERT_TRUE(same_normalize(random_at_msb(rng, m), bits));
+  ASSERT_TRUE(same_normalize(0, 32));
+}
+
+// The hard cases, directed: exact ties with an even and an odd kept part, a tie ± 1 (the
+// sticky bit in the other word), the rounding carry-out (all ones), exact values (nothing
+// dropped), the largest input 2^127 − 1 — at every msb and width, shifts across the word
+// boundary included.
+TEST(Normalize64, EqualsTheU128PathAndGmpOnTiesCarriesAndExactValues) {
+  std::mt19937_64 rng(65);
+  for (int bits = 1; bits <= 63; ++bits)
+    for (int m = 0; m <= 126; ++m) {
+      const int shift = m - (bits - 1);
+      const u128 top = ((u128)1 << m);
+      const u128 ones = top | (top - 1);
+      ASSERT_TRUE(same_normalize(ones, bits));  // carry-out
+      ASSERT_TRUE(same_normalize(top, bits));   // exact
+      if (shift <= 0) continue;
+      const u128 half = (u128)1 << (shift - 1);
+      for (int k = 0; k < 4; ++k) {
+        u128 kept = random_at_msb(rng, bits - 1);
+        if (k >= 2) kept |= 1;           // odd kept part
+        else kept &= ~(u128)1 | (bits == 1 ? 1 : 0);  // even (bits 1: the msb itself)
+        const u128 tie = (kept << shift) | half;
+        ASSERT_TRUE(same_normalize(tie, bits));
+        ASSERT_TRUE(same_normalize(tie + 1, bits));
+        ASSERT_TRUE(same_normalize(tie - 1, bits));
+        ASSERT_TRUE(same_normalize(kept << shift, bits));  // exact multiple
+      }
+    }
+  ASSERT_TRUE(same_normalize(~(u128)0 >> 1, 63));
+  ASSERT_TRUE(same_normalize(~(u128)0 >> 1, 1));
+}
