@@ -81,6 +81,44 @@ inline u128 low_bits(u128 x, int width) {
   return width >= 128 ? x : (x & ((((u128)1) << width) - 1));
 }
 
+// ---- integer division with remainder ----------------------------------------------------------
+
+// Contract: q = floor(a / d), r = a − q·d ∈ [0, d), for any a and d > 0 (u128). Exact.
+//   When d < 2^64 and the quotient fits 64 bits (a / 2^64 < d) on x86-64 it is the one hardware
+//   128-by-64-bit division (divq), else the compiler's u128 division (docs/speed.md "Wide
+//   divisions with a narrow quotient"); the same q and r (DivMod128.* in tests/model/fixed_test.cpp).
+inline void udivmod128(u128 a, u128 d, u128& q, u128& r) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  const uint64_t hi = (uint64_t)(a >> 64), d64 = (uint64_t)d;
+  if ((d >> 64) == 0 && hi < d64) {  // hi < d: the quotient fits 64 bits (no #DE)
+    uint64_t q64, r64;
+    __asm__("divq %4" : "=a"(q64), "=d"(r64) : "a"((uint64_t)a), "d"(hi), "rm"(d64) : "cc");
+    q = q64;
+    r = r64;
+    return;
+  }
+#endif
+  q = a / d;
+  r = a % d;
+}
+
+// Contract: q = floor(a / d), r = a − q·d ∈ [0, d), for any a and d > 0 (i128). Exact.
+inline void floor_divmod(i128 a, i128 d, i128& q, i128& r) {
+  const u128 ud = (u128)d;
+  u128 uq, ur;
+  if (a >= 0) {
+    udivmod128((u128)a, ud, uq, ur);
+    q = (i128)uq, r = (i128)ur;
+    return;
+  }
+  udivmod128((u128)0 - (u128)a, ud, uq, ur);  // |a| (also for a = −2^127)
+  if (ur == 0) {
+    q = -(i128)uq, r = 0;
+  } else {
+    q = -(i128)uq - 1, r = (i128)(ud - ur);
+  }
+}
+
 // ---- rounding shift ------------------------------------------------------------------------
 
 namespace detail {

@@ -30,7 +30,8 @@ i128 rne_quotient_plus(bool neg, u128 N, int k, u128 D, i128 C, bool* overflow) 
     if (msb_index(D) - k > kDivMaxMsb) return C;  // |quotient| < 2^−24: rounds to C either way
     den = D << (-k);
   }
-  const u128 q = num / den, r = num % den;
+  u128 q, r;
+  udivmod128(num, den, q, r);
   if (q >> 120) {
     *overflow = true;
     return 0;
@@ -110,8 +111,9 @@ FxFloat attr_quotient(const FxFloat& n, const FxFloat& w, int bits) {
   u128 num = (u128)n.sig, den = (u128)w.sig;
   if (s >= 0) num <<= s;
   else den <<= -s;
-  const u128 q = num / den;
-  const bool rem = (num % den) != 0;
+  u128 q, r;
+  udivmod128(num, den, q, r);
+  const bool rem = r != 0;
   const int extra = msb_index(q) - (bits - 1);  // 1 or 2
   u128 sig = q >> extra;
   const bool guard = (q >> (extra - 1)) & 1;

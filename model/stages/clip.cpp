@@ -86,6 +86,32 @@ int sign_of_sum(const Term& t1, const Term& t2) {
   return s > 0 ? 1 : (s < 0 ? -1 : 0);
 }
 
+// The same sign in 64-bit words (docs/speed.md "Trivial accept in 64 bits"): |k|·sig computed
+// with an overflow check; when both products are below 2^62 the leading ones are compared from
+// 64-bit leading-zero counts and, when they coincide, the aligned magnitudes (shift ≤ 61, so
+// each stays below 2^62) are summed in int64. Returns 2 when a product is too wide (the caller
+// then takes the u128 path). Equal to sign_of_sum(term(ka, a), term(kb, b))
+// (Clip.PlaneSide64EqualsTheU128Path in tests/model/clip_test.cpp).
+int sign_of_sum64(int64_t ka, const FxFloat& a, int64_t kb, const FxFloat& b) {
+  uint64_t ma = 0, mb = 0;
+  const uint64_t lim = uint64_t{1} << 62;
+  if (ka != 0 && a.sig != 0 &&
+      (__builtin_mul_overflow(ka < 0 ? (uint64_t)0 - (uint64_t)ka : (uint64_t)ka, a.sig, &ma) || ma >= lim))
+    return 2;
+  if (kb != 0 && b.sig != 0 &&
+      (__builtin_mul_overflow(kb < 0 ? (uint64_t)0 - (uint64_t)kb : (uint64_t)kb, b.sig, &mb) || mb >= lim))
+    return 2;
+  const bool na = (ka < 0) != a.neg, nb = (kb < 0) != b.neg;
+  if (ma == 0) return mb == 0 ? 0 : (nb ? -1 : 1);
+  if (mb == 0) return na ? -1 : 1;
+  const int la = a.exp + 63 - __builtin_clzll(ma), lb = b.exp + 63 - __builtin_clzll(mb);
+  if (la != lb) return la > lb ? (na ? -1 : 1) : (nb ? -1 : 1);
+  const int e = std::min(a.exp, b.exp);
+  const int64_t x = (int64_t)(ma << (a.exp - e)), y = (int64_t)(mb << (b.exp - e));  // < 2^62
+  const int64_t sum = (na ? -x : x) + (nb ? -y : y);
+  return sum > 0 ? 1 : (sum < 0 ? -1 : 0);
+}
+
 }  // namespace
 
 int plane_side(const PlaneEq& pl, const ClipVtx& v) {
@@ -96,8 +122,15 @@ int plane_side(const PlaneEq& pl, const ClipVtx& v) {
     if (l != kWMinExp) return l > kWMinExp ? 1 : -1;
     return (w.sig & (w.sig - 1)) == 0 ? 0 : 1;  // w = 2^kWMinExp exactly iff sig is a power of 2
   }
+  static const FxFloat kZero{};
+  const int s64 = sign_of_sum64(pl.comp >= 0 ? pl.a : 0, pl.comp >= 0 ? v.p[pl.comp] : kZero, pl.b, w);
+  if (s64 != 2) return s64;
+  return plane_side_u128(pl, v);
+}
+
+int plane_side_u128(const PlaneEq& pl, const ClipVtx& v) {
   const Term ta = pl.comp >= 0 ? term(pl.a, v.p[pl.comp]) : Term{};
-  return sign_of_sum(ta, term(pl.b, w));
+  return sign_of_sum(ta, term(pl.b, v.p[3]));
 }
 
 uint32_t outcode(const GuardBand& gb, const ClipVtx& v) {

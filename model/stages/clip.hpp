@@ -68,8 +68,11 @@ struct PlaneEq {
 };
 PlaneEq plane_eq(const GuardBand& gb, ClipPlane p);
 
-// Contract: exact sign (−1, 0, +1) of the plane distance of v. No rounding.
+// Contract: exact sign (−1, 0, +1) of the plane distance of v. No rounding. In 64-bit words
+// when both products fit (float32 inputs always), else plane_side_u128.
 int plane_side(const PlaneEq& pl, const ClipVtx& v);
+// The u128 path alone (not for the wmin plane): the reference of the 64-bit one.
+int plane_side_u128(const PlaneEq& pl, const ClipVtx& v);
 // Bit p set when v is strictly outside plane p (d < 0).
 uint32_t outcode(const GuardBand& gb, const ClipVtx& v);
 

@@ -36,12 +36,7 @@ namespace fxr {
 
 // ---- z: exact stepping of the depth code (derivation in model/stages/depth.hpp) -------------
 
-// floor(a / d) with remainder in [0, d), d > 0.
-inline void floor_divmod(i128 a, i128 d, i128& q, i128& r) {
-  q = a / d;
-  r = a % d;
-  if (r < 0) r += d, q -= 1;
-}
+// floor(a / d) with remainder in [0, d): floor_divmod (model/arith/fixed.hpp).
 
 // Exact stepping of RNE(Z / den) along +x, in the integer type T (i128: the reference; int64_t:
 // the fast path, used only where depth_step_fits64 proves every value of the span fits).

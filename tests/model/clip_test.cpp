@@ -466,3 +466,55 @@ TEST(Clip, AgreesWithTheDoublePipelineWithinTheDocumentedBound) {
   EXPECT_GT(compared, 5000);
   EXPECT_LT(skipped, 30);
 }
+
+// The trivial-accept test's plane sides in 64-bit words (docs/speed.md "Trivial accept in 64
+// bits") against the u128 path and the exact rational sign (GMP): float32-like vertices (every
+// product in 64 bits), wide significands (the fallback), equal leading ones (the aligned sum,
+// exact zeros on a plane), zero components, over several guard bands.
+TEST(Clip, PlaneSide64EqualsTheU128PathAndTheRationalSign) {
+  std::mt19937_64 rng(64);
+  const Config cfg;
+  int fast = 0, wide = 0, zero = 0;
+  for (const int size : {1, 320, 1024, 4096}) {
+    const GuardBand gb = guard_band(cfg.raster, state(size, size - 7 > 0 ? size - 7 : 1));
+    for (int i = 0; i < 40000; ++i) {
+      ClipVtx v;
+      const int sig_bits = i % 5 == 0 ? 40 + (int)(rng() % 25) : 1 + (int)(rng() % 24);
+      for (int c = 0; c < 4; ++c) {
+        v.p[c].neg = rng() & 1;
+        v.p[c].sig = rng() >> (64 - sig_bits);
+        v.p[c].exp = (int)(rng() % 60) - 40;
+        if (rng() % 16 == 0) v.p[c].sig = 0;
+      }
+      if (i % 3 == 0) {  // a vertex on or next to a plane: x = ±(n/W)·w, z = w, z = 0
+        const int p = (int)(rng() % kNumClipPlanes);
+        const PlaneEq pl = plane_eq(gb, (ClipPlane)p);
+        if (pl.comp >= 0 && pl.a != 0 && pl.b != 0) {
+          // a·x + b·w = 0 with x = −b·t, w = a·t (t a random significand)
+          const uint64_t t = (rng() >> 44) | 1;
+          const int e = (int)(rng() % 20) - 10;
+          v.p[pl.comp] = FxFloat{(pl.b > 0) != ((rng() & 1) != 0), (uint64_t)std::llabs(pl.b) * t, e};
+          v.p[3] = FxFloat{v.p[pl.comp].neg == (pl.b > 0) ? (pl.a < 0) : (pl.a > 0), (uint64_t)std::llabs(pl.a) * t, e};
+          if (rng() & 1) v.p[3].sig += (rng() & 1) ? 1 : -1;  // just off the plane
+        }
+      }
+      for (int p = 0; p < kNumClipPlanes; ++p) {
+        const PlaneEq pl = plane_eq(gb, (ClipPlane)p);
+        const int s = plane_side(pl, v);
+        if (pl.wmin) continue;  // no products: one path
+        const int s128 = plane_side_u128(pl, v);
+        const mpq_class d = (pl.comp >= 0 ? mpq_class(mpz_class((long)pl.a)) * q_of(v.p[pl.comp]) : mpq_class(0)) +
+                            mpq_class(mpz_class((long)pl.b)) * q_of(v.p[3]);
+        const int ref = sgn(d);
+        ASSERT_EQ(s128, ref) << "plane " << p;
+        ASSERT_EQ(s, ref) << "plane " << p << " sig bits " << sig_bits;
+        if (ref == 0) ++zero;
+        const int mb = v.p[3].sig ? 64 - __builtin_clzll(v.p[3].sig) : 0;
+        (mb + 24 <= 62 ? fast : wide) += 1;
+      }
+    }
+  }
+  EXPECT_GT(zero, 1000);  // the aligned-sum case reached, exact zeros included
+  EXPECT_GT(fast, 100000);
+  EXPECT_GT(wide, 10000);  // the fallback reached
+}

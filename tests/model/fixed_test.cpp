@@ -176,3 +176,74 @@ TEST(Normalize64, EqualsTheU128PathAndGmpOnTiesCarriesAndExactValues) {
   ASSERT_TRUE(same_normalize(~(u128)0 >> 1, 63));
   ASSERT_TRUE(same_normalize(~(u128)0 >> 1, 1));
 }
+
+// ---- udivmod128 / floor_divmod (docs/speed.md "Wide divisions with a narrow quotient") ------
+
+namespace {
+
+::testing::AssertionResult same_floor_divmod(i128 a, i128 d) {
+  i128 q, r;
+  floor_divmod(a, d, q, r);
+  mpz_class gq, gr;
+  const mpz_class ga = to_mpz(a), gd = to_mpz(d);
+  mpz_fdiv_qr(gq.get_mpz_t(), gr.get_mpz_t(), ga.get_mpz_t(), gd.get_mpz_t());
+  if (to_mpz(q) != gq || to_mpz(r) != gr)
+    return ::testing::AssertionFailure() << "a = " << ga.get_str() << " d = " << gd.get_str() << ": q "
+                                         << to_mpz(q).get_str() << " r " << to_mpz(r).get_str() << ", GMP q "
+                                         << gq.get_str() << " r " << gr.get_str();
+  if (a >= 0) {  // the unsigned entry point directly
+    u128 uq, ur;
+    udivmod128((u128)a, (u128)d, uq, ur);
+    if (to_mpz((i128)uq) != gq || to_mpz((i128)ur) != gr)
+      return ::testing::AssertionFailure() << "udivmod128 a = " << ga.get_str() << " d = " << gd.get_str();
+  }
+  return ::testing::AssertionSuccess();
+}
+
+i128 random_bits(std::mt19937_64& rng, int bits) {  // magnitude < 2^bits, 1 ≤ bits ≤ 126
+  const u128 r = ((u128)rng() << 64) | rng();
+  return (i128)(r & ((((u128)1) << bits) - 1));
+}
+
+}  // namespace
+
+// Both outcomes of the fast-path test (quotient fits 64 bits with d < 2^64, or not): dividends
+// and divisors of every size, both signs of the dividend, against GMP's floor division.
+TEST(DivMod128, FloorDivisionEqualsGmpOnRandomOperandsOfEverySize) {
+  std::mt19937_64 rng(128);
+  for (int ab = 1; ab <= 126; ++ab)
+    for (int db = 1; db <= 126; db += 1)
+      for (int k = 0; k < 6; ++k) {
+        i128 a = random_bits(rng, ab), d = random_bits(rng, db);
+        if (d == 0) d = 1;
+        if (k & 1) a = -a;
+        ASSERT_TRUE(same_floor_divmod(a, d));
+      }
+}
+
+// Directed: the fast path's boundary a / 2^64 = d − 1 (taken) and = d (not), d = 1, d = 2^64 − 1,
+// d = 2^64, exact multiples of both signs (remainder 0), a = 0, a = ±(2^127 − 1), a = −2^127.
+TEST(DivMod128, FloorDivisionEqualsGmpAtTheFastPathBoundary) {
+  std::mt19937_64 rng(129);
+  const u128 two64 = (u128)1 << 64;
+  for (int k = 0; k < 20000; ++k) {
+    uint64_t d = rng() >> (rng() % 64);
+    if (d == 0) d = 1;
+    for (const uint64_t hi : {d - 1, d, d == UINT64_MAX ? d : d + 1}) {
+      if (hi >> 62) continue;  // keep a < 2^126 positive (signed range with room to negate)
+      for (const uint64_t lo : {uint64_t{0}, d - 1, (uint64_t)rng(), UINT64_MAX}) {
+        const i128 a = (i128)(((u128)hi << 64) | lo);
+        ASSERT_TRUE(same_floor_divmod(a, (i128)d));
+        ASSERT_TRUE(same_floor_divmod(-a, (i128)d));
+      }
+    }
+    const i128 m = (i128)d * (i128)(rng() >> 1);  // an exact multiple
+    ASSERT_TRUE(same_floor_divmod(m, (i128)d));
+    ASSERT_TRUE(same_floor_divmod(-m, (i128)d));
+  }
+  const i128 big = (i128)(~(u128)0 >> 1);
+  for (const i128 d : {(i128)1, (i128)3, (i128)UINT64_MAX, (i128)two64, (i128)two64 + 1, big}) {
+    for (const i128 a : {(i128)0, (i128)1, (i128)-1, big, -big, -big - 1, (i128)two64 * 5 - 1})
+      ASSERT_TRUE(same_floor_divmod(a, d));
+  }
+}
