@@ -46,7 +46,7 @@ DrawRun draw(const Config& cfg, const ClipTriangle& t) {
     chain.draw(t, 0);
   }
   r.stats = f.stats;
-  r.fragments = f.fragments;
+  r.fragments = f.fragments.to_vector();
   return r;
 }
 
