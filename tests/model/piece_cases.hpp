@@ -6,18 +6,12 @@
 #pragma once
 
 #include "model/unit/io.hpp"
+#include "tests/model/clip_vertex.hpp"
 
 namespace fxr::piece_cases {
 
 inline ClipVertex vertex(float x, float y, float z, float w, float v0, float v1) {
-  ClipVertex v;
-  v.pos[0] = x;
-  v.pos[1] = y;
-  v.pos[2] = z;
-  v.pos[3] = w;
-  v.var[0] = v0;
-  v.var[1] = v1;
-  return v;
+  return test::clip_vertex(x, y, z, w, v0, v1);
 }
 
 inline DrawState state() {

@@ -6,21 +6,13 @@
 #include <gtest/gtest.h>
 
 #include "reference/reference.hpp"
+#include "tests/model/clip_vertex.hpp"
 
 using namespace fxr;
 
 namespace {
 
-ClipVertex cv(float x, float y, float z, float w, float v0 = 0, float v1 = 0) {
-  ClipVertex v;
-  v.pos[0] = x;
-  v.pos[1] = y;
-  v.pos[2] = z;
-  v.pos[3] = w;
-  v.var[0] = v0;
-  v.var[1] = v1;
-  return v;
-}
+ClipVertex cv(float x, float y, float z, float w, float v0 = 0, float v1 = 0) { return test::clip_vertex(x, y, z, w, v0, v1); }
 
 DrawState state(int w, int h, int nv = 2) {
   DrawState st;
