@@ -702,8 +702,8 @@ void finish(CycleRun& run, std::chrono::steady_clock::time_point t0) {
 }
 
 // ---- stages 1–4 ---------------------------------------------------------------------------------
-// The values come from fxr::GeometryChain run once per primitive (the model's rule that a
-// primitive is rejected whole); what each RTL stage did with it is recorded by taps, and four
+// The values come from fxr::GeometryChain run once per primitive (a clipped piece that fails in
+// stage 3 or 4 is dropped alone, docs/pipeline.md); what each RTL stage did with it is recorded by taps, and four
 // timing modules (fxr_input, fxr_clip, fxr_recip_stage, fxr_viewport) move it through.
 
 struct GeoPiece {  // a triangle out of the clipper
