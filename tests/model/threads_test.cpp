@@ -17,6 +17,7 @@
 #include "model/unit/chain.hpp"
 #include "model/unit/raster_unit.hpp"
 #include "model/unit/threads.hpp"
+#include "stats_fields.hpp"
 
 using namespace fxr;
 
@@ -25,20 +26,6 @@ namespace {
 std::string source_dir() {
   const char* d = std::getenv("FXR_SOURCE_DIR");
   return d ? d : ".";  // ctest sets it; the working directory is the source tree
-}
-
-std::vector<std::pair<std::string, uint64_t>> stats_fields(RasterStats s) {
-  std::vector<std::pair<std::string, uint64_t>> v;
-  auto add = [&](const char* n, uint64_t& x) { v.emplace_back(n, x); };
-  s.visit(add);
-  auto add_line = [&](const char* n, uint64_t& x) { v.emplace_back(std::string("lines.") + n, x); };
-  s.lines.visit(add_line);
-  const TriStats& t = s.tris;
-  for (auto [n, x] : {std::pair<const char*, uint64_t>{"tris.geom_rejected_range", t.geom_rejected_range},
-                      {"tris.in", t.in}, {"tris.drawn", t.drawn}, {"tris.zero_area", t.zero_area},
-                      {"tris.backface", t.backface}, {"tris.no_samples", t.no_samples}, {"tris.range", t.range}})
-    v.emplace_back(n, x);
-  return v;
 }
 
 // Every field of two frames; `what` names the run.
