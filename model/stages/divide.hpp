@@ -65,7 +65,7 @@ class DivideStage {
 
   // with_varyings false: fragments without varyings (nothing is divided).
   DivideStage(const Config& cfg, const DrawState& st, bool with_varyings = true)
-      : dc_(cfg.div), nv_(with_varyings ? st.num_varyings : 0) {}
+      : dc_(cfg.div), nv_(with_varyings ? st.num_varyings : 0), memo_(st.interp == InterpMode::Affine) {}
 
   // 1 → 1: the fragment (position, depth code, varyings var[0 … num_varyings−1]).
   template <class Emit>
@@ -75,8 +75,13 @@ class DivideStage {
     f_.depth = in.depth;
     f_.prim = in.prim;
     if (nv_ > 0) {
-      const DenNorm dn = normalize_den(dc_, in.den, in.den_exp);
-      for (int m = 0; m < nv_; ++m) f_.var[m] = divide_varying(dc_, in.num[m], in.num_exp[m], dn);
+      // Affine mode: D = 2A is one value per triangle; its normalisation (and shared_recip's
+      // reciprocal) is kept while D and its exponent repeat (docs/speed.md "Shortcuts").
+      if (!memo_ || in.den != memo_den_ || in.den_exp != memo_exp_ || !memo_valid_) {
+        dn_ = normalize_den(dc_, in.den, in.den_exp);
+        memo_den_ = in.den, memo_exp_ = in.den_exp, memo_valid_ = true;
+      }
+      for (int m = 0; m < nv_; ++m) f_.var[m] = divide_varying(dc_, in.num[m], in.num_exp[m], dn_);
     }
     emit(static_cast<const Out&>(f_));
   }
@@ -88,6 +93,11 @@ class DivideStage {
  private:
   DivConfig dc_;
   int nv_;
+  bool memo_;  // affine mode
+  bool memo_valid_ = false;
+  i128 memo_den_ = 0;
+  int memo_exp_ = 0;
+  DenNorm dn_;
   Fragment f_;
 };
 

@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "model/config/config.hpp"
@@ -146,7 +147,8 @@ class FragmentChain {
         traverse_(cfg, st),
         interp_(cfg, st, sink != nullptr),
         depth_(cfg, st, DepthBufferView{depth, width, st.viewport_x, st.viewport_y}),
-        divide_(cfg, st, sink != nullptr) {
+        divide_(cfg, st, sink != nullptr),
+        count_only_(sink == nullptr && !st.depth_test && std::is_same<Taps, NoTaps>::value) {
     if (sink) sink->draw_state(st);
   }
 
@@ -179,6 +181,10 @@ class FragmentChain {
   void span(const TriangleEquations& eq, const Span& sp) {
     taps_.template out<TraverseStage>(sp);
     stats_.fragments_generated += (uint64_t)(sp.x1 - sp.x0 + 1);
+    if (count_only_) {  // nothing reads a depth code: every pixel passes (docs/speed.md "Shortcuts")
+      stats_.fragments_depth_pass += (uint64_t)(sp.x1 - sp.x0 + 1);
+      return;
+    }
     taps_.template in<InterpStage>(sp);
     interp_.step(eq, sp, [&](const PlaneSample& ps) {
       taps_.template out<InterpStage>(ps);
@@ -206,6 +212,9 @@ class FragmentChain {
   InterpStage interp_;
   DepthStage depth_;
   DivideStage divide_;
+  // No sink, the depth test off and no tap: stages 7–8 are skipped, the pixels only counted
+  // (Shortcut.CountOnlyChainWithTheDepthTestOffEqualsTheFullPath, tests/model/shortcut_test.cpp).
+  bool count_only_;
 };
 
 // The primitive accounting of run_raster_unit. count_geometry: a primitive that left the
