@@ -125,6 +125,15 @@ inline uint32_t varying_input_bits(uint32_t bits, bool* replaced) {
   return (bits & kSign) | kMaxFinite;   // ±Inf → ±FLT_MAX
 }
 
+// Stage 1 on one vertex: positions decoded exactly (nan / inf set by a NaN / Inf position),
+// the first nv varyings after varying_input_bits (replaced set when one was replaced).
+inline void convert_vertex(const ClipVertex& in, int nv, ClipVtx& out, bool& nan, bool& inf, bool& replaced) {
+  for (int c = 0; c < 4; ++c) out.p[c] = convert_input(in.pos[c], nan, inf);
+  out.wa = out.p[3];
+  for (int k = 0; k < nv; ++k)  // finite after the replacement: decoded exactly
+    out.v[k] = decode_f32(varying_input_bits(f32_bits(in.var[k]), &replaced)).value;
+}
+
 class ConvertStage {
  public:
   static constexpr const char* kName = "convert";
@@ -142,12 +151,7 @@ class ConvertStage {
     if (nv_ < 0 || nv_ > kMaxVaryings) return ConvertOutcome::RejectedRange;  // bad draw state
     bool nan = false, inf = false, replaced = false;
     out_.prim = in.prim;
-    for (int i = 0; i < 3; ++i) {
-      for (int c = 0; c < 4; ++c) out_.v[i].p[c] = convert_input(in.tri.v[i].pos[c], nan, inf);
-      out_.v[i].wa = out_.v[i].p[3];
-      for (int k = 0; k < nv_; ++k)  // finite after the replacement: decoded exactly
-        out_.v[i].v[k] = decode_f32(varying_input_bits(f32_bits(in.tri.v[i].var[k]), &replaced)).value;
-    }
+    for (int i = 0; i < 3; ++i) convert_vertex(in.tri.v[i], nv_, out_.v[i], nan, inf, replaced);
     if (nan) return ConvertOutcome::RejectedNaN;
     if (inf) return ConvertOutcome::RejectedInf;
     replaced_ = replaced;

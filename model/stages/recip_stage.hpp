@@ -50,6 +50,16 @@ StageCost as_stage_cost(const C& c) {
   }
 }
 
+// Stage 3 on one vertex: r = recip(w_c normalised to recip.in_sig_bits); false when the unit
+// flags a zero divisor or an exponent overflow.
+inline bool recip_vertex(const RecipConfig& c, const ClipVtx& v, FxFloat& r) {
+  const FxFloat w = normalize_fx(v.p[3], c.in_sig_bits, Round::HalfEven);
+  const RecipResult rr = recip(c, w);
+  if (rr.div_by_zero || rr.exp_overflow) return false;
+  r = rr.value;
+  return true;
+}
+
 class RecipStage {
  public:
   static constexpr const char* kName = "recip";
@@ -62,12 +72,8 @@ class RecipStage {
   // exactly this width), so the normalisation before the unit never rounds.
   template <class Emit>
   RecipOutcome step(const In& in, Emit&& emit) {
-    for (int i = 0; i < 3; ++i) {
-      const FxFloat w = normalize_fx(in.v[i].p[3], cfg_.in_sig_bits, Round::HalfEven);
-      const RecipResult rr = recip(cfg_, w);
-      if (rr.div_by_zero || rr.exp_overflow) return RecipOutcome::RecipError;
-      out_.r[i] = rr.value;
-    }
+    for (int i = 0; i < 3; ++i)
+      if (!recip_vertex(cfg_, in.v[i], out_.r[i])) return RecipOutcome::RecipError;
     out_.prim = in.prim;
     for (int i = 0; i < 3; ++i) copy_clip_vertex(in.v[i], out_.v[i], nv_);
     emit(static_cast<const Out&>(out_));

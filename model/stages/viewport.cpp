@@ -102,10 +102,9 @@ FxFloat round_prod(const FxProd& p, int bits) {
 ProjectStatus project_vertex(const Config& cfg, const DrawState& st, const ClipVtx& v, SetupVertex& out) {
   // Stage 3: the reciprocal unit. w is exact at in_sig_bits (float32: 24 bits; the clipper
   // rounds its w to exactly this width), so this normalisation never rounds.
-  const FxFloat w = normalize_fx(v.p[3], cfg.recip.in_sig_bits, Round::HalfEven);
-  const RecipResult rr = recip(cfg.recip, w);
-  if (rr.div_by_zero || rr.exp_overflow) return ProjectStatus::RecipError;
-  return snap_vertex(cfg, st, v, rr.value, out);
+  FxFloat r;
+  if (!recip_vertex(cfg.recip, v, r)) return ProjectStatus::RecipError;
+  return snap_vertex(cfg, st, v, r, out);
 }
 
 ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx& v, const FxFloat& r,

@@ -40,6 +40,7 @@
 #include "model/unit/geometry.hpp"
 #include "model/unit/io.hpp"
 #include "model/unit/raster_unit.hpp"
+#include "model/unit/vertex_cache.hpp"
 
 namespace fxr {
 
@@ -56,11 +57,21 @@ template <class Taps = NoTaps>
 class GeometryChain {
  public:
   GeometryChain(const Config& cfg, const DrawState& st, Taps& taps)
-      : taps_(taps), convert_(cfg, st), clip_(cfg, st), recip_(cfg, st), viewport_(cfg, st) {}
+      : taps_(taps), convert_(cfg, st), clip_(cfg, st), recip_(cfg, st), viewport_(cfg, st), cache_(cfg, st) {}
 
   // Contract: as fxr::geometry() (model/unit/geometry.hpp): appends the snapped triangles of
   // `in` to `out`, updates the geometry counters of `s`.
   GeomOutcome run(const InputTriangle& in, std::vector<SetupTriangle>& out, RasterStats& s) {
+    if constexpr (std::is_same<Taps, NoTaps>::value) {
+      // Three cached accepted vertices: the trivial accept's one triangle, as the stages below
+      // would emit it (model/unit/vertex_cache.hpp; docs/speed.md "Shortcuts").
+      if (cache_.triangle(in, cached_)) {
+        rejected_ = 0;
+        ++s.prims_trivial_accept;
+        out.push_back(cached_);
+        return GeomOutcome::Emitted;
+      }
+    }
     taps_.template in<ConvertStage>(in);
     const ExactTriangle* ex = nullptr;
     switch (convert_.step(in, [&](const ExactTriangle& e) {
@@ -118,6 +129,8 @@ class GeometryChain {
 
   // Pieces of the last run()'s primitive dropped in stage 3 or 4 (its other pieces were emitted).
   uint64_t pieces_rejected() const { return rejected_; }
+  // The vertex cache (used without taps only): vertices found / computed.
+  const VertexCache& vertex_cache() const { return cache_; }
 
  private:
   Taps& taps_;
@@ -126,6 +139,8 @@ class GeometryChain {
   ClipStage clip_;
   RecipStage recip_;
   ViewportStage viewport_;
+  VertexCache cache_;
+  SetupTriangle cached_;
 };
 
 // Stages 5–10: one snapped triangle to fragments, against the depth buffer of a frame.

@@ -4,14 +4,22 @@
 //     counts each span's pixels and skips stages 7–8 (FragmentChain's count-only path); the full
 //     path is forced by a tap (any Taps other than NoTaps observes every stage);
 //   - affine mode: D = 2A is constant over the triangle, so DivideStage normalises it once per
-//     triangle instead of per pixel; against divide_varying(normalize_den(...)) of every sample.
+//     triangle instead of per pixel; against divide_varying(normalize_den(...)) of every sample;
+//   - the vertex cache (model/unit/vertex_cache.hpp): stages 1–4 once per distinct vertex of
+//     trivially accepted triangles; GeometryChain<NoTaps> against the full chain (a tap) on
+//     meshes with shared vertices, some of them NaN / Inf, with a NaN varying, outside a clip
+//     plane or exactly on it, and on the default scene (the bunny) through the whole unit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <random>
 #include <utility>
 #include <vector>
 
+#include "frontend/scene.hpp"
 #include "geom_ref.hpp"
 #include "model/unit/chain.hpp"
 #include "stats_fields.hpp"
@@ -130,4 +138,234 @@ TEST(Shortcut, AffineDenominatorNormalisedOncePerTriangleEqualsThePerPixelPath) 
       }
     }
   }
+}
+
+namespace {
+
+bool same_fx(const FxFloat& a, const FxFloat& b) { return a.sig == b.sig && a.exp == b.exp && a.neg == b.neg; }
+
+// Every field of two snapped triangles (SetupTriangle has padding: no memcmp).
+bool same_setup(const SetupTriangle& a, const SetupTriangle& b) {
+  if (a.prim != b.prim) return false;
+  for (int i = 0; i < 3; ++i) {
+    const SetupVertex &u = a.v[i], &w = b.v[i];
+    if (u.x != w.x || u.y != w.y || u.ax != w.ax || u.ay != w.ay || u.z != w.z || !same_fx(u.rw, w.rw)) return false;
+    for (int k = 0; k < kMaxVaryings; ++k)
+      if (!same_fx(u.vw[k], w.vw[k])) return false;
+  }
+  return true;
+}
+
+// A mesh on an n × n grid of shared vertices (two triangles per cell, the cells in a shuffled
+// order of row blocks so that the cache both hits and evicts), in clip space around the
+// viewport, with hard vertices mixed in: NaN / Inf positions, a NaN or Inf varying, −0,
+// vertices outside the guard band, behind the eye, beyond the far plane, exactly on a plane
+// (x = w, z = 0, z = w), denormal coordinates.
+std::vector<ClipTriangle> grid_mesh(std::mt19937_64& rng, int n, int nv, double span) {
+  std::uniform_real_distribution<double> u(-1, 1), wl(std::log(0.3), std::log(8.0)), var(-50, 50), pick(0, 1);
+  std::vector<ClipVertex> vs((size_t)n * (size_t)n);
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      ClipVertex& v = vs[(size_t)j * n + i];
+      const double w = std::exp(wl(rng));
+      const double x = (-span + 2 * span * i / (n - 1) + 0.01 * u(rng)), y = (-span + 2 * span * j / (n - 1) + 0.01 * u(rng));
+      v.pos[0] = (float)(x * w), v.pos[1] = (float)(y * w), v.pos[2] = (float)((0.5 + 0.4 * u(rng)) * w), v.pos[3] = (float)w;
+      for (int k = 0; k < nv; ++k) v.var[k] = (float)var(rng);
+      if (j < 2) v.pos[2] = (float)(1.3 * w);  // the first rows beyond the far plane: culled outside
+      const double r = pick(rng);
+      if (r < 0.005) v.pos[(size_t)(rng() % 4)] = nan;
+      else if (r < 0.01) v.pos[(size_t)(rng() % 4)] = (rng() & 1) ? inf : -inf;
+      else if (r < 0.015 && nv > 0) v.var[(size_t)(rng() % (uint64_t)nv)] = (rng() & 1) ? nan : inf;
+      else if (r < 0.025) v.pos[0] = v.pos[3];            // on the right plane of NDC x = 1 (inside the guard band)
+      else if (r < 0.03) v.pos[2] = 0.0f;                 // on the near plane
+      else if (r < 0.035) v.pos[2] = v.pos[3];            // on the far plane
+      else if (r < 0.04) v.pos[2] = -0.0f;                // −0 on the near plane
+      else if (r < 0.045) v.pos[2] = 1.1f * v.pos[3];     // beyond the far plane: clipped
+      else if (r < 0.05) v.pos[3] = -v.pos[3];            // behind the eye: clipped
+      else if (r < 0.055) v.pos[0] = 5000.0f * v.pos[3];  // outside the guard band
+      else if (r < 0.06) v.pos[1] = 1e-40f;               // a denormal
+    }
+  std::vector<ClipTriangle> tris;
+  std::vector<int> rows((size_t)(n - 1));
+  for (int j = 0; j < n - 1; ++j) rows[(size_t)j] = j;
+  std::shuffle(rows.begin(), rows.end(), rng);
+  for (int j : rows)
+    for (int i = 0; i < n - 1; ++i) {
+      const ClipVertex &a = vs[(size_t)j * n + i], &b = vs[(size_t)j * n + i + 1], &c = vs[(size_t)(j + 1) * n + i],
+                       &d = vs[(size_t)(j + 1) * n + i + 1];
+      tris.push_back(ClipTriangle{{a, b, d}});
+      tris.push_back(ClipTriangle{{a, d, c}});
+    }
+  return tris;
+}
+
+template <class Taps>
+GeometryChain<Taps> geometry_run(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
+                                 Taps& taps, std::vector<SetupTriangle>& out, std::vector<int>& outcomes,
+                                 RasterStats& s) {
+  GeometryChain<Taps> chain(cfg, st, taps);
+  InputTriangle in;
+  for (size_t p = 0; p < tris.size(); ++p) {
+    in.prim = (uint32_t)p;
+    in.tri = tris[p];
+    outcomes.push_back((int)chain.run(in, out, s) * 1000 + (int)chain.pieces_rejected());
+  }
+  return chain;
+}
+
+struct KeepSink : FragmentSink {
+  std::vector<Fragment> v;
+  void emit(const Fragment& f) override { v.push_back(f); }
+};
+
+bool same_fragment(const Fragment& a, const Fragment& b, int nv) {
+  if (a.prim != b.prim || a.x != b.x || a.y != b.y || a.depth != b.depth) return false;
+  for (int k = 0; k < nv; ++k)
+    if (!same_fx(a.var[k], b.var[k])) return false;
+  return true;
+}
+
+}  // namespace
+
+TEST(Shortcut, VertexCacheEqualsTheFullGeometryChainOnMeshesWithHardVertices) {
+  std::mt19937_64 rng(0x5c03);
+  uint64_t hits = 0, misses = 0;
+  for (const bool attr : {true, false}) {
+    Config cfg;
+    if (!attr) cfg.raster.attr_subpixel_bits = cfg.raster.subpixel_bits;
+    for (int trial = 0; trial < 6; ++trial) {
+      DrawState st = state(160 + 48 * trial, 120, trial % 2 ? -7 : 0, trial % 3 ? 5 : 0, trial % 4);
+      if (trial == 5) st.interp = InterpMode::Affine;
+      const std::vector<ClipTriangle> tris = grid_mesh(rng, trial < 3 ? 60 : 90, st.num_varyings, trial % 2 ? 1.05 : 0.7);
+      NoTaps nt;
+      FullPathTap ft;
+      std::vector<SetupTriangle> fast_out, full_out;
+      std::vector<int> fast_oc, full_oc;
+      RasterStats fast_s, full_s;
+      const auto fast = geometry_run(cfg, st, tris, nt, fast_out, fast_oc, fast_s);
+      geometry_run(cfg, st, tris, ft, full_out, full_oc, full_s);
+      ASSERT_EQ(fast_oc, full_oc);
+      EXPECT_EQ(stats_fields(fast_s), stats_fields(full_s));
+      ASSERT_EQ(fast_out.size(), full_out.size());
+      for (size_t i = 0; i < fast_out.size(); ++i) ASSERT_TRUE(same_setup(fast_out[i], full_out[i])) << "triangle " << i;
+      // Every kind of primitive is present: accepted, clipped, culled, NaN, Inf, a varying replaced.
+      EXPECT_GT(full_s.prims_trivial_accept, 1000u);
+      EXPECT_GT(full_s.prims_clipped, 0u);
+      const auto count = [&](GeomOutcome g) {
+        return std::count_if(full_oc.begin(), full_oc.end(), [&](int o) { return o / 1000 == (int)g; });
+      };
+      EXPECT_GT(count(GeomOutcome::RejectedNaN), 0);
+      EXPECT_GT(count(GeomOutcome::RejectedInf), 0);
+      EXPECT_GT(count(GeomOutcome::CulledOutside), 0);
+      if (st.num_varyings > 0) {
+        EXPECT_GT(full_s.prims_varying_nonfinite, 0u);
+      }
+      hits += fast.vertex_cache().hits();
+      misses += fast.vertex_cache().misses();
+    }
+  }
+  // Both outcomes of the lookup, many times.
+  EXPECT_GT(hits, 2 * misses);
+  EXPECT_GT(misses, 10000u);
+}
+
+TEST(Shortcut, VertexCacheLeavesTheDefaultSceneUnchangedThroughTheWholeUnit) {
+  SceneOptions o;
+  o.width = 256, o.height = 192;
+  const Scene sc = default_scene(o);
+  ASSERT_GT(sc.tris.size(), 10000u);  // the bunny (or its generated stand-in)
+  FrameOutput fast, full;
+  KeepSink fs, us;
+  NoTaps nt;
+  FullPathTap ft;
+  run_raster_unit_to(sc.config, sc.state, sc.tris, fast, &fs, nt);
+  run_raster_unit_to(sc.config, sc.state, sc.tris, full, &us, ft);
+  EXPECT_EQ(stats_fields(fast.stats), stats_fields(full.stats));
+  EXPECT_EQ(fast.depth, full.depth);
+  ASSERT_EQ(fs.v.size(), us.v.size());
+  ASSERT_GT(fs.v.size(), 10000u);
+  for (size_t i = 0; i < fs.v.size(); ++i)
+    ASSERT_TRUE(same_fragment(fs.v[i], us.v[i], sc.state.num_varyings)) << "fragment " << i;
+  // The geometry of the same scene hits the cache for most vertices.
+  std::vector<SetupTriangle> out;
+  std::vector<int> oc;
+  RasterStats s;
+  const auto g = geometry_run(sc.config, sc.state, sc.tris, nt, out, oc, s);
+  EXPECT_GT(g.vertex_cache().hits(), 2 * g.vertex_cache().misses());
+}
+
+// A cache of 4 slots, so that every slot is shared by many vertices, fed vertices that differ
+// from a base vertex in exactly one 32-bit word (one ulp of a position or a varying, +0 / −0,
+// a NaN payload): whenever it answers a triangle, the answer is the full chain's for that
+// triangle (a trivial accept of one triangle equal to it). Both answers are reached.
+TEST(Shortcut, VertexCacheWithCollidingSlotsAnswersOnlyForTheVertexItKeeps) {
+  std::mt19937_64 rng(0x5c04);
+  const Config cfg;
+  DrawState st = state(200, 150, 0, 0, 3);
+  const auto bump = [](float f, int d) {
+    uint32_t b;
+    std::memcpy(&b, &f, 4);
+    b = (uint32_t)((int64_t)b + d);
+    std::memcpy(&f, &b, 4);
+    return f;
+  };
+  std::vector<ClipVertex> base(6);
+  std::uniform_real_distribution<float> u(-0.8f, 0.8f), var(-5, 5);
+  for (ClipVertex& v : base) {
+    const float w = 1.5f;
+    v.pos[0] = u(rng) * w, v.pos[1] = u(rng) * w, v.pos[2] = 0.5f * w, v.pos[3] = w;
+    for (int k = 0; k < st.num_varyings; ++k) v.var[k] = var(rng);
+  }
+  base[5].var[2] = 0.0f;  // −0 below
+  // Families: a base vertex and its one-word siblings.
+  std::vector<std::vector<ClipVertex>> family;
+  for (const ClipVertex& b : base) {
+    family.push_back({b});
+    for (int word = 0; word < 4 + st.num_varyings; ++word)
+      for (int d : {-1, 1}) {
+        ClipVertex v = b;
+        float& f = word < 4 ? v.pos[word] : v.var[word - 4];
+        f = bump(f, d);
+        family.back().push_back(v);
+      }
+  }
+  ClipVertex neg0 = base[5];
+  neg0.var[2] = -0.0f;
+  family[5].push_back(neg0);
+  ClipVertex nan1 = base[1], nan2 = base[1];
+  nan1.var[0] = std::numeric_limits<float>::quiet_NaN();
+  nan2.var[0] = bump(std::numeric_limits<float>::quiet_NaN(), 1);  // another payload
+  family[1].push_back(nan1), family[1].push_back(nan2);
+  ClipVertex far = base[2], behind = base[3];  // outside a clip plane
+  far.pos[2] = bump(far.pos[3], 1);
+  behind.pos[3] = -behind.pos[3];
+  family[2].push_back(far), family[3].push_back(behind);
+  // One slot: consecutive lookups are the same vertex (a hit) or a sibling (must miss).
+  VertexCache cache(cfg, st, 0, 0);
+  FullPathTap ft;
+  GeometryChain<FullPathTap> full(cfg, st, ft);
+  uint64_t answered = 0, declined = 0;
+  for (uint32_t p = 0; p < 20000; ++p) {
+    InputTriangle in;
+    in.prim = p;
+    const std::vector<ClipVertex>& fam = family[rng() % family.size()];
+    for (auto& v : in.tri.v) v = fam[rng() % (p % 2 ? 3 : fam.size())];
+    SetupTriangle got;
+    if (!cache.triangle(in, got)) {
+      ++declined;
+      continue;
+    }
+    ++answered;
+    std::vector<SetupTriangle> want;
+    RasterStats s;
+    ASSERT_EQ(full.run(in, want, s), GeomOutcome::Emitted) << "primitive " << p;
+    ASSERT_EQ(s.prims_trivial_accept, 1u);
+    ASSERT_EQ(want.size(), 1u);
+    ASSERT_TRUE(same_setup(got, want[0])) << "primitive " << p;
+  }
+  EXPECT_GT(answered, 1000u);
+  EXPECT_GT(declined, 1000u);
+  EXPECT_GT(cache.misses(), 10000u);  // the 4 slots are replaced all the time
+  EXPECT_GT(cache.hits(), 1000u);
 }
