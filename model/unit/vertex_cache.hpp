@@ -63,13 +63,14 @@ class VertexCache {
         usable_(gb_.valid && nv_ >= 0 && nv_ <= kMaxVaryings), min_prims_(min_prims), bits_(max_slot_bits) {}
 
   // Contract: true when all three vertices of `in` are accepted vertices (accepted_vertex);
-  // `out` is then the triangle stages 1–4 emit for it (prim set; the varyings past nv are not
-  // written: zero in a default SetupTriangle, as snap_vertex leaves them). false: nothing is
-  // known, the caller runs the full chain. Counts hits and misses per vertex looked up.
+  // `out` is then the triangle stages 1–4 emit for it (prim set; the varyings past nv are only
+  // ever written with zero, as snap_vertex does: keep `out` from a default SetupTriangle).
+  // false: nothing is known (`out` may be partly written), the caller runs the full chain.
+  // Counts hits and misses per vertex looked up.
   bool triangle(const InputTriangle& in, SetupTriangle& out) {
     if (!usable_) return false;
     if (++prims_ <= min_prims_) return false;
-    if (slots_.empty()) allocate();
+    if (buf_.empty()) allocate();
     for (int i = 0; i < 3; ++i)
       if (!vertex(in.tri.v[i], out.v[i])) return false;
     out.prim = in.prim;
@@ -80,22 +81,23 @@ class VertexCache {
   uint64_t misses() const { return misses_; }
 
  private:
-  enum : uint8_t { kEmpty = 0, kAccepted = 1, kNotAccepted = 2 };
-  struct Slot {
-    uint8_t state = kEmpty;
+  enum : uint32_t { kEmpty = 0, kAccepted = 1, kNotAccepted = 2 };
+  // A slot, contiguous (one or two adjacent cache lines at 2 varyings): the head, then the key
+  // words, then the varyings.
+  struct Head {
+    uint32_t state = kEmpty;
     int64_t x = 0, y = 0, ax = 0, ay = 0;
     uint64_t z = 0;
     FxFloat rw;
   };
+  static constexpr size_t kKeyOffset = sizeof(Head);
 
   void allocate() {
     kw_ = 4 + (size_t)nv_;
-    const size_t slot_bytes = sizeof(Slot) + kw_ * sizeof(uint32_t) + (size_t)nv_ * sizeof(FxFloat);
-    while (bits_ > 8 && (slot_bytes << bits_) > kVertexCacheBytes) --bits_;
-    const size_t n = (size_t)1 << bits_;
-    slots_.assign(n, Slot{});
-    keys_.assign(n * kw_, 0);
-    vw_.assign(n * (size_t)nv_, FxFloat{});
+    vw_offset_ = (kKeyOffset + kw_ * sizeof(uint32_t) + 7) / 8 * 8;
+    stride_ = (vw_offset_ + (size_t)nv_ * sizeof(FxFloat) + 7) / 8;  // in 64-bit words
+    while (bits_ > 8 && ((stride_ * 8) << bits_) > kVertexCacheBytes) --bits_;
+    buf_.assign(stride_ << bits_, 0);  // state 0 = kEmpty
   }
 
   bool vertex(const ClipVertex& cv, SetupVertex& out) {
@@ -105,25 +107,26 @@ class VertexCache {
     uint64_t h = 0;
     for (size_t k = 0; k < kw_; ++k) h = (h ^ key[k]) * 0x9E3779B97F4A7C15ull;
     const size_t i = bits_ > 0 ? (size_t)(h >> (64 - bits_)) : 0;
-    Slot& s = slots_[i];
-    uint32_t* sk = &keys_[i * kw_];
-    FxFloat* svw = &vw_[i * (size_t)nv_];
-    if (s.state != kEmpty && std::memcmp(sk, key, kw_ * sizeof(uint32_t)) == 0) {
+    unsigned char* slot = reinterpret_cast<unsigned char*>(&buf_[i * stride_]);
+    Head head;
+    std::memcpy(&head, slot, sizeof(Head));
+    if (head.state != kEmpty && std::memcmp(slot + kKeyOffset, key, kw_ * sizeof(uint32_t)) == 0) {
       ++hits_;
-    } else {
-      ++misses_;
-      std::memcpy(sk, key, kw_ * sizeof(uint32_t));
-      SetupVertex v;
-      s.state = accepted_vertex(cfg_, st_, gb_, cv, v) ? kAccepted : kNotAccepted;
-      if (s.state == kAccepted) {
-        s.x = v.x, s.y = v.y, s.ax = v.ax, s.ay = v.ay, s.z = v.z, s.rw = v.rw;
-        for (int k = 0; k < nv_; ++k) svw[k] = v.vw[k];
-      }
+      if (head.state != kAccepted) return false;
+      out.x = head.x, out.y = head.y, out.ax = head.ax, out.ay = head.ay, out.z = head.z, out.rw = head.rw;
+      std::memcpy(out.vw, slot + vw_offset_, (size_t)nv_ * sizeof(FxFloat));
+      return true;
     }
-    if (s.state != kAccepted) return false;
-    out.x = s.x, out.y = s.y, out.ax = s.ax, out.ay = s.ay, out.z = s.z, out.rw = s.rw;
-    for (int k = 0; k < nv_; ++k) out.vw[k] = svw[k];
-    return true;
+    ++misses_;
+    std::memcpy(slot + kKeyOffset, key, kw_ * sizeof(uint32_t));
+    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out);
+    head.state = ok ? kAccepted : kNotAccepted;
+    if (ok) {
+      head.x = out.x, head.y = out.y, head.ax = out.ax, head.ay = out.ay, head.z = out.z, head.rw = out.rw;
+      std::memcpy(slot + vw_offset_, out.vw, (size_t)nv_ * sizeof(FxFloat));
+    }
+    std::memcpy(slot, &head, sizeof(Head));
+    return ok;
   }
 
   const Config& cfg_;
@@ -134,10 +137,8 @@ class VertexCache {
   uint64_t min_prims_;
   uint64_t prims_ = 0, hits_ = 0, misses_ = 0;
   int bits_;
-  size_t kw_ = 4;
-  std::vector<Slot> slots_;
-  std::vector<uint32_t> keys_;
-  std::vector<FxFloat> vw_;
+  size_t kw_ = 4, vw_offset_ = 0, stride_ = 0;
+  std::vector<uint64_t> buf_;
 };
 
 }  // namespace fxr
