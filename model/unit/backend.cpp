@@ -13,7 +13,7 @@
 
 namespace fxr {
 
-void frame_begin(const Config& cfg, const DrawState& st, FrameOutput& f) {
+void frame_check(const Config& cfg, const DrawState& st) {
   validate(cfg, "configuration");  // every range and cross-field rule (model/config/validate.hpp)
   check_attr_widths(cfg);           // attribute-plane widths (model/stages/attr.hpp)
   if (st.num_varyings < 0 || st.num_varyings > kMaxVaryings)
@@ -22,6 +22,10 @@ void frame_begin(const Config& cfg, const DrawState& st, FrameOutput& f) {
   if (st.viewport_w < 1 || st.viewport_h < 1)
     throw ConfigError("draw state: viewport " + std::to_string(st.viewport_w) + "x" +
                       std::to_string(st.viewport_h) + " is empty");
+}
+
+void frame_begin(const Config& cfg, const DrawState& st, FrameOutput& f) {
+  frame_check(cfg, st);
   f.width = st.viewport_w;
   f.height = st.viewport_h;
   f.fragments.shape(st.num_varyings);

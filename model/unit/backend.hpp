@@ -16,6 +16,8 @@ namespace fxr {
 // statistics. Checks the configuration widths and the draw state (num_varyings within
 // 0 … kMaxVaryings, viewport ≥ 1×1): ConfigError otherwise.
 void frame_begin(const Config& cfg, const DrawState& st, FrameOutput& f);
+// Contract: the checks of frame_begin alone (ConfigError as there); frame_begin calls it.
+void frame_check(const Config& cfg, const DrawState& st);
 
 // Contract: stages 5–10 on one snapped triangle into frame `f` (after frame_begin):
 //   setup (SetupOutcome other than Ok: nothing drawn, returned for the caller to count);

@@ -119,6 +119,19 @@ class FragmentStore {
     n_ += count;
   }
 
+  // Contract: size() becomes n; records below the old size are kept, the others are
+  // unspecified until written (write_at). Several threads may then write_at disjoint ranges.
+  void resize_for_overwrite(size_t n) {
+    reserve(n);
+    n_ = n;
+  }
+  // Contract: records [dst, dst + count) (within size()) become records [first, first + count)
+  // of `o` (same num_varyings), in one copy.
+  void write_at(size_t dst, const FragmentStore& o, size_t first, size_t count) {
+    if (o.nv_ != nv_ || dst + count > n_) throw std::logic_error("FragmentStore::write_at: shape or range");
+    if (count) std::memcpy(buf_ + dst * stride_, o.buf_ + first * o.stride_, count * stride_);
+  }
+
   // The accessors of a record without decoding the whole Fragment.
   uint32_t prim(size_t i) const { return word(i, 0); }
   int32_t x(size_t i) const { return (int32_t)word(i, 1); }

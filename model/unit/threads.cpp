@@ -4,9 +4,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
+#include <cstddef>
 #include <exception>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -18,36 +22,102 @@ namespace fxr {
 
 namespace {
 
-// All threads wait until the last one arrives.
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#else
+  std::this_thread::yield();
+#endif
+}
+
+// A waiting thread polls before it sleeps: on an idle machine the other threads reach a barrier
+// within microseconds, while a sleeping thread takes tens of microseconds to be woken
+// (docs/speed.md). How long it polls adapts per thread: doubled (up to kSpinMax) after a wait
+// that ended while polling, halved (down to kSpinMin) after one that had to sleep — on a loaded
+// machine, where the thread waited for is often descheduled, polling soon stops costing CPU.
+constexpr std::chrono::nanoseconds kSpinMax{100000}, kSpinMin{1000};
+
+// Returns once ready() holds: polls, then sleeps on `cv` (whoever makes ready() true does so
+// holding `m`, then notifies `cv`).
+template <class Ready>
+void spin_then_wait(std::mutex& m, std::condition_variable& cv, Ready&& ready) {
+  if (ready()) return;
+  thread_local std::chrono::nanoseconds spin = kSpinMax;
+  const auto until = std::chrono::steady_clock::now() + spin;
+  for (unsigned i = 1;; ++i) {
+    cpu_relax();
+    if (ready()) {
+      spin = std::min(kSpinMax, spin * 2);
+      return;
+    }
+    if ((i & 63) == 0 && std::chrono::steady_clock::now() > until) break;
+  }
+  spin = std::max(kSpinMin, spin / 2);
+  std::unique_lock<std::mutex> lock(m);
+  cv.wait(lock, ready);
+}
+
+// All threads wait until the last one arrives; the last one runs `last` before releasing them.
 class Barrier {
  public:
   explicit Barrier(int n) : n_(n) {}
-  void wait() {
-    std::unique_lock<std::mutex> lock(m_);
-    const uint64_t gen = gen_;
-    if (++count_ == n_) {
-      count_ = 0;
-      ++gen_;
+  template <class Last>
+  void wait(Last&& last) {
+    const uint64_t gen = gen_.load(std::memory_order_acquire);
+    if (count_.fetch_add(1, std::memory_order_acq_rel) + 1 == n_) {
+      count_.store(0, std::memory_order_relaxed);
+      last();
+      {
+        std::lock_guard<std::mutex> lock(m_);
+        gen_.store(gen + 1, std::memory_order_release);
+      }
       cv_.notify_all();
       return;
     }
-    cv_.wait(lock, [&] { return gen_ != gen; });
+    spin_then_wait(m_, cv_, [&] { return gen_.load(std::memory_order_acquire) != gen; });
   }
 
  private:
+  const int n_;
+  alignas(64) std::atomic<int> count_{0};
+  alignas(64) std::atomic<uint64_t> gen_{0};
   std::mutex m_;
   std::condition_variable cv_;
-  int n_, count_ = 0;
-  uint64_t gen_ = 0;
 };
 
-// Fragments [begin, end) of a thread's store: triangle `tri` (sequence number in the draw), band
-// `band` of the rows.
-struct Run {
-  uint64_t tri = 0;
-  int64_t band = 0;
-  size_t begin = 0, end = 0;
+// Candidate-pixel weights (model/unit/threads.hpp: the raster steps) saturate at kWeightCap:
+// the sum is then the same whatever the order of the additions, so every thread finds the same
+// step boundaries; past the cap the rest of a batch is one step. One triangle weighs less than
+// 2^62 (its rows and width are within the viewport, each below 2^31).
+constexpr uint64_t kWeightCap = uint64_t{1} << 62;
+constexpr uint64_t kNoStart = ~uint64_t{0};
+uint64_t add_weight(uint64_t a, uint64_t b) { return std::min(a + b, kWeightCap); }  // a, b ≤ kWeightCap
+
+// A set-up triangle in a batch buffer, beside its equations.
+struct EqMeta {
+  uint64_t start = 0;      // weight of the producer's earlier triangles in the batch
+  int64_t b0 = 0, b1 = 0;  // bands of its rows y0 and y1
+  int64_t chunk = 0;       // rows per raster item (all its rows when it weighs ≤ step_pixels) …
+  int64_t items = 0;       // … and the number of items
 };
+
+// Triangles one thread set up from its share of a batch.
+struct Batch {
+  std::vector<TriangleEquations> eqs;  // grown, never shrunk: a frame reuses the last one's
+  std::vector<EqMeta> meta;
+  size_t n = 0;
+  uint64_t weight = 0;
+  std::vector<std::vector<size_t>> route;  // route[c]: the triangles with a band of thread c
+};
+
+// Fragments of one thread in a raster step: `count` records of triangle `tri` (sequence number
+// in the batch) from row `row` (from the viewport's bottom) up, within one band.
+struct Run {
+  unsigned __int128 key;  // tri · 2^64 + row: the sequential order
+  size_t count;
+};
+unsigned __int128 run_key(uint64_t tri, int64_t row) { return (unsigned __int128)tri << 64 | (uint64_t)row; }
+bool run_before(const Run& a, const Run& b) { return a.key < b.key; }
 
 // The members of a set-up triangle stages 6–10 read (the planes of `nv` varyings): a batch
 // buffer copies only these (a TriangleEquations holds kMaxVaryings planes).
@@ -64,15 +134,114 @@ void copy_used(const TriangleEquations& a, int nv, TriangleEquations& b) {
   }
 }
 
-int64_t floor_div64(int64_t a, int64_t d) { return a / d - ((a % d != 0) && (a < 0)); }
-
-struct Worker {
+// One thread's state; kept by the pool from frame to frame (buffers keep their capacity).
+struct alignas(64) Worker {
   RasterStats stats;
-  FragmentStore store;
-  std::vector<Run> runs;
-  std::vector<TriangleEquations> eqs[2];  // batch buffers (steps alternate)
-  size_t n_eqs[2] = {0, 0};
+  Batch batch[2];             // by batch parity
+  FragmentStore store[2];     // records of a raster step, by step parity
+  std::vector<Run> runs[2];
+  // Raster cursor in the current batch: producer, index in its route list, item of the triangle.
+  int cur_p = 0;
+  size_t cur_r = 0;
+  uint64_t cur_k = 0;
+  uint64_t next_start = kNoStart;  // weight where this thread's next item starts (after a step)
   std::exception_ptr error;
+};
+
+// A fragment sink writing into a thread's current step buffer.
+class StepSink final : public FragmentSink {
+ public:
+  FragmentStore* to = nullptr;
+  void emit(const Fragment& f) override { to->push_back(f); }
+};
+
+// Worker threads that persist between frames: run(fn) calls fn(w) on threads 0 … n − 1 (0 is the
+// calling thread) and returns when every call has returned.
+class Pool {
+ public:
+  explicit Pool(int n) : n_(n), workers_((size_t)n) {
+    for (int w = 1; w < n; ++w) threads_.emplace_back([this, w] { loop(w); });
+  }
+  ~Pool() {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      stop_ = true;
+      gen_.fetch_add(1, std::memory_order_release);
+    }
+    cv_.notify_all();
+    for (std::thread& t : threads_) t.join();
+  }
+  int size() const { return n_; }
+  std::vector<Worker>& workers() { return workers_; }
+  bool busy = false;
+
+  template <class Fn>
+  void run(Fn& fn) {
+    job_ = [](void* p, int w) { (*static_cast<Fn*>(p))(w); };
+    arg_ = &fn;
+    running_.store(n_ - 1, std::memory_order_relaxed);
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      gen_.fetch_add(1, std::memory_order_release);
+    }
+    cv_.notify_all();
+    fn(0);
+    spin_then_wait(done_m_, done_cv_, [&] { return running_.load(std::memory_order_acquire) == 0; });
+  }
+
+ private:
+  void loop(int w) {
+    uint64_t seen = 0;
+    for (;;) {
+      spin_then_wait(m_, cv_, [&] { return gen_.load(std::memory_order_acquire) != seen; });
+      seen = gen_.load(std::memory_order_acquire);
+      {
+        std::lock_guard<std::mutex> lock(m_);
+        if (stop_) return;
+      }
+      job_(arg_, w);  // never throws (the frame body catches)
+      if (running_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+        { std::lock_guard<std::mutex> lock(done_m_); }
+        done_cv_.notify_all();
+      }
+    }
+  }
+
+  const int n_;
+  std::vector<Worker> workers_;
+  std::vector<std::thread> threads_;
+  std::mutex m_, done_m_;
+  std::condition_variable cv_, done_cv_;
+  std::atomic<uint64_t> gen_{0};
+  bool stop_ = false;  // under m_
+  std::atomic<int> running_{0};
+  void (*job_)(void*, int) = nullptr;
+  void* arg_ = nullptr;
+};
+
+// The calling thread's pool (a nested call, from a sink's emit, gets a pool of its own).
+class PoolLease {
+ public:
+  explicit PoolLease(int n) {
+    thread_local std::unique_ptr<Pool> mine;
+    if (mine && mine->busy) {
+      own_.reset(new Pool(n));
+      pool_ = own_.get();
+    } else {
+      if (!mine || mine->size() != n) {
+        mine.reset();
+        mine.reset(new Pool(n));
+      }
+      pool_ = mine.get();
+    }
+    pool_->busy = true;
+  }
+  ~PoolLease() { pool_->busy = false; }
+  Pool& operator*() const { return *pool_; }
+
+ private:
+  std::unique_ptr<Pool> own_;
+  Pool* pool_ = nullptr;
 };
 
 void add_stats(RasterStats& to, RasterStats& from) {
@@ -88,133 +257,381 @@ void add_stats(RasterStats& to, RasterStats& from) {
   a.backface += b.backface, a.no_samples += b.no_samples, a.range += b.range;
 }
 
+// One frame on the pool's threads (the scheme of model/unit/threads.hpp).
+class FrameRun {
+ public:
+  FrameRun(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris, FrameOutput& f,
+           FragmentStore* keep, FragmentSink* sink, const ThreadOptions& opts, std::vector<Worker>& workers)
+      : cfg_(cfg), st_(st), tris_(tris), f_(f), keep_(keep), sink_(sink), obs_(opts.observer), W_(workers),
+        T_((int)workers.size()), R_(opts.band_rows), B_((size_t)opts.batch_prims), step_((uint64_t)opts.step_pixels),
+        records_(keep != nullptr || sink != nullptr), nv_(records_ ? st.num_varyings : 0),
+        nbatches_((int64_t)((tris.size() + B_ - 1) / B_)), barrier_(T_) {
+    for (int k = 0; k < 31; ++k)
+      if (R_ == (int64_t)1 << k) band_shift_ = k;
+    for (int q = 0; q < 2; ++q) base_weight_[q].assign((size_t)T_, 0), base_tri_[q].assign((size_t)T_, 0);
+    head_.resize((size_t)T_);
+    before_.resize((size_t)T_);
+  }
+
+  // Contract: the whole frame; `f` is prepared here (frame_begin's checks come first).
+  void run(Pool& pool) {
+    phase(0, ThreadPhase::Frame);
+    frame_check(cfg_, st_);
+    f_.width = st_.viewport_w;
+    f_.height = st_.viewport_h;
+    f_.fragments.shape(st_.num_varyings);
+    f_.stats = RasterStats{};
+    if (keep_ && keep_ != &f_.fragments) keep_->shape(st_.num_varyings);
+    if (sink_) sink_->draw_state(st_);
+    const size_t words = (size_t)f_.width * (size_t)f_.height;
+    // A depth buffer of the right size is cleared by the threads, each its own bands; a new
+    // one is allocated and cleared here while the other threads set up the first batch.
+    reuse_depth_ = f_.depth.size() == words;
+    for (Worker& w : W_) {
+      w.stats = RasterStats{};
+      w.error = nullptr;
+      for (int q = 0; q < 2; ++q) {
+        w.store[q].shape(st_.num_varyings);
+        w.runs[q].clear();
+        w.batch[q].route.resize((size_t)T_);
+      }
+    }
+    ctl_.fill_depth = reuse_depth_;
+    ctl_.setup = nbatches_ > 0 ? 0 : -1;
+    ctl_.done = false;
+    auto body = [this, words](int w) {
+      if (w == 0 && !reuse_depth_) {
+        try {
+          f_.depth.assign(words, depth_max_code(cfg_.raster));
+        } catch (...) {
+          W_[0].error = std::current_exception();
+          failed_ = true;
+        }
+      }
+      thread_body(w);
+    };
+    pool.run(body);
+    for (Worker& w : W_)
+      if (w.error) std::rethrow_exception(w.error);
+    for (Worker& w : W_) add_stats(f_.stats, w.stats);
+    phase(0, ThreadPhase::Done);
+  }
+
+ private:
+  void phase(int w, ThreadPhase p) {
+    if (obs_) obs_->phase(w, p);
+  }
+
+  void thread_body(int w) {
+    Worker& me = W_[(size_t)w];
+    NoTaps taps;
+    std::optional<GeometryChain<NoTaps>> geometry;
+    std::optional<SetupStage> setup;
+    std::optional<FragmentChain<NoTaps>> chain;  // made after the depth buffer exists
+    StepSink to_store;
+    std::vector<SetupTriangle> pieces;
+    InputTriangle in;
+    for (;;) {
+      if (!failed_.load(std::memory_order_relaxed)) {
+        try {
+          if (ctl_.fill_depth) fill_depth(w);
+          if (ctl_.out_parity >= 0) output(w, ctl_.out_parity);
+          if (ctl_.raster >= 0) {
+            phase(w, ThreadPhase::Raster);
+            if (!chain) chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, records_ ? &to_store : nullptr, taps);
+            to_store.to = &me.store[ctl_.rec_parity];
+            raster(w, *chain);
+          }
+          if (ctl_.setup >= 0) {
+            phase(w, ThreadPhase::Setup);
+            if (!geometry) geometry.emplace(cfg_, st_, taps), setup.emplace(cfg_, st_, records_);
+            set_up(w, *geometry, *setup, pieces, in);
+          }
+        } catch (...) {
+          me.error = std::current_exception();
+          failed_ = true;
+        }
+      }
+      phase(w, ThreadPhase::Wait);
+      barrier_.wait([&] {
+        phase(w, ThreadPhase::Serial);
+        decide();
+      });
+      if (ctl_.done) break;
+    }
+    if (w != 0) phase(w, ThreadPhase::Done);
+  }
+
+  // Step 0 with a reused depth buffer: this thread's bands cleared.
+  void fill_depth(int w) {
+    phase(w, ThreadPhase::Setup);
+    const uint32_t code = depth_max_code(cfg_.raster);
+    const int64_t h = f_.height;
+    for (int64_t r0 = (int64_t)w * R_; r0 < h; r0 += (int64_t)T_ * R_) {
+      const int64_t r1 = std::min<int64_t>(h, r0 + R_);
+      std::fill(f_.depth.begin() + r0 * f_.width, f_.depth.begin() + r1 * f_.width, code);
+    }
+  }
+
+  // Stages 1–5 on this thread's share of batch ctl_.setup; the triangles routed to their bands'
+  // threads and weighted (rows × width, saturating).
+  void set_up(int w, GeometryChain<NoTaps>& geometry, SetupStage& setup, std::vector<SetupTriangle>& pieces,
+              InputTriangle& in) {
+    Worker& me = W_[(size_t)w];
+    Batch& b = me.batch[ctl_.setup & 1];
+    b.n = 0;
+    b.weight = 0;
+    for (std::vector<size_t>& r : b.route) r.clear();
+    const size_t lo = (size_t)ctl_.setup * B_, len = std::min(B_, tris_.size() - lo);
+    const size_t p0 = lo + len * (size_t)w / (size_t)T_, p1 = lo + len * (size_t)(w + 1) / (size_t)T_;
+    for (size_t p = p0; p < p1; ++p) {
+      ++me.stats.prims_in;
+      in.prim = (uint32_t)p;
+      in.tri = tris_[p];
+      pieces.clear();
+      if (!count_geometry(me.stats, geometry.run(in, pieces, me.stats))) continue;
+      PrimDisposition d;
+      d.range = geometry.pieces_rejected() > 0;
+      for (const SetupTriangle& t : pieces)
+        d.add(me.stats, setup.step(t, [&](const TriangleEquations& eq) { add_triangle(b, eq); }));
+      d.count(me.stats, pieces.empty());
+    }
+  }
+
+  void add_triangle(Batch& b, const TriangleEquations& eq) {
+    const TriSetup& t = eq.edges;
+    if (t.y1 < t.y0 || t.x1 < t.x0) return;  // no candidate pixel: nothing to rasterise
+    if (b.n == b.eqs.size()) b.eqs.emplace_back(), b.meta.emplace_back();
+    const size_t i = b.n++;
+    copy_used(eq, nv_, b.eqs[i]);
+    EqMeta& m = b.meta[i];
+    const uint64_t rows = (uint64_t)((int64_t)t.y1 - t.y0 + 1), width = (uint64_t)((int64_t)t.x1 - t.x0 + 1);
+    const uint64_t weight = rows * width;
+    m.start = b.weight;
+    m.chunk = weight <= step_ ? (int64_t)rows : (int64_t)std::clamp<uint64_t>(step_ / width, 1, rows);
+    m.items = ((int64_t)rows - 1) / m.chunk + 1;
+    m.b0 = band_of(t.y0);
+    m.b1 = band_of(t.y1);
+    b.weight = add_weight(b.weight, weight);
+    if (m.b1 - m.b0 + 1 >= T_) {
+      for (std::vector<size_t>& r : b.route) r.push_back(i);
+    } else {
+      for (int64_t band = m.b0; band <= m.b1; ++band) b.route[(uint32_t)band % (uint32_t)T_].push_back(i);
+    }
+  }
+
+  // The band of row y (in the viewport: y ≥ viewport_y).
+  int64_t band_of(int64_t y) const {
+    const int64_t r = y - st_.viewport_y;
+    return band_shift_ >= 0 ? r >> band_shift_ : r / R_;
+  }
+
+  // The members of a routed triangle the raster step reads first, fetched ahead.
+  static void prefetch(const Batch& b, size_t i) {
+    const char* p = reinterpret_cast<const char*>(&b.eqs[i]);
+    const size_t used = offsetof(TriangleEquations, interp) + offsetof(InterpSetup, num);
+    for (size_t o = 0; o < used; o += 64) __builtin_prefetch(p + o);
+    __builtin_prefetch(&b.meta[i]);
+  }
+
+  // Stages 6–10 on this thread's bands of the items of batch ctl_.raster that start below
+  // ctl_.raster_end; then me.next_start is where its next item starts.
+  void raster(int w, FragmentChain<NoTaps>& chain) {
+    Worker& me = W_[(size_t)w];
+    const int q = (int)(ctl_.raster & 1);
+    const uint64_t end = ctl_.raster_end;
+    FragmentStore& store = me.store[ctl_.rec_parity];
+    std::vector<Run>& runs = me.runs[ctl_.rec_parity];
+    store.clear();
+    runs.clear();
+    const int64_t vy = st_.viewport_y;
+    for (; me.cur_p < T_; ++me.cur_p, me.cur_r = 0) {
+      const Batch& b = W_[(size_t)me.cur_p].batch[q];
+      const std::vector<size_t>& list = b.route[(size_t)w];
+      const uint64_t base = base_weight_[q][(size_t)me.cur_p], tri0 = base_tri_[q][(size_t)me.cur_p];
+      for (; me.cur_r < list.size(); ++me.cur_r, me.cur_k = 0) {
+        const size_t i = list[me.cur_r];
+        const EqMeta& m = b.meta[i];
+        const TriangleEquations& eq = b.eqs[i];
+        const int64_t y0 = eq.edges.y0, y1 = eq.edges.y1;
+        const uint64_t width = (uint64_t)((int64_t)eq.edges.x1 - eq.edges.x0 + 1);
+        const uint64_t start = add_weight(base, m.start);
+        const int64_t items = m.items;
+        if (me.cur_r + 1 < list.size()) prefetch(b, list[me.cur_r + 1]);
+        for (; (int64_t)me.cur_k < items; ++me.cur_k) {
+          const int64_t ra = y0 + (int64_t)me.cur_k * m.chunk, rb = std::min(y1, ra + m.chunk - 1);
+          const uint64_t at = add_weight(start, me.cur_k * (uint64_t)m.chunk * width);
+          if (at >= end) {
+            me.next_start = at;
+            return;
+          }
+          const int64_t b0 = items == 1 ? m.b0 : band_of(ra), b1 = items == 1 ? m.b1 : band_of(rb);
+          for (int64_t band = b0 + (int64_t)(((uint32_t)w + (uint32_t)T_ - (uint32_t)b0 % (uint32_t)T_) % (uint32_t)T_); band <= b1; band += T_) {
+            const int64_t lo = std::max(ra, vy + band * R_), hi = std::min(rb, vy + band * R_ + R_ - 1);
+            const size_t before = store.size();
+            chain.rows(eq, (int)lo, (int)hi);
+            if (store.size() > before) runs.push_back({run_key(tri0 + i, lo - vy), store.size() - before});
+          }
+        }
+      }
+    }
+    me.next_start = kNoStart;
+  }
+
+  // The records of the previous raster step (parity q) into the frame's store at their place in
+  // the sequential order, or, on the calling thread, to the sink.
+  void output(int w, int q) {
+    if (keep_) {
+      phase(w, ThreadPhase::Output);
+      const std::vector<Run>& mine = W_[(size_t)w].runs[q];
+      const FragmentStore& src = W_[(size_t)w].store[q];
+      // For each other thread: its next run and the records before it.
+      size_t at_mine = 0;
+      std::vector<size_t>& head = head_[(size_t)w], &before = before_[(size_t)w];
+      head.assign((size_t)T_, 0);
+      before.assign((size_t)T_, 0);
+      for (const Run& r : mine) {
+        size_t dst = out_base_ + at_mine;
+        for (int t = 0; t < T_; ++t) {
+          if (t == w) continue;
+          const std::vector<Run>& other = W_[(size_t)t].runs[q];
+          size_t& h = head[(size_t)t];
+          size_t& n = before[(size_t)t];
+          while (h < other.size() && run_before(other[h], r)) n += other[h++].count;
+          dst += n;
+        }
+        keep_->write_at(dst, src, at_mine, r.count);
+        at_mine += r.count;
+      }
+    } else if (sink_ && w == 0) {
+      phase(w, ThreadPhase::Output);
+      std::vector<size_t>& head = head_[0], &pos = before_[0];
+      head.assign((size_t)T_, 0);
+      pos.assign((size_t)T_, 0);
+      for (;;) {
+        int best = -1;
+        for (int t = 0; t < T_; ++t) {
+          const std::vector<Run>& r = W_[(size_t)t].runs[q];
+          if (head[(size_t)t] == r.size()) continue;
+          if (best < 0 || run_before(r[head[(size_t)t]], W_[(size_t)best].runs[q][head[(size_t)best]])) best = t;
+        }
+        if (best < 0) break;
+        const Run& run = W_[(size_t)best].runs[q][head[(size_t)best]++];
+        const FragmentStore& src = W_[(size_t)best].store[q];
+        size_t& p = pos[(size_t)best];
+        for (size_t i = p; i < p + run.count; ++i) sink_->emit(src[i]);
+        p += run.count;
+      }
+    }
+  }
+
+  // Between two steps, on the last thread to arrive: what the next step does.
+  void decide() {
+    ctl_.fill_depth = false;
+    ctl_.out_parity = -1;
+    if (ctl_.raster >= 0) {  // the step's records go out in the next step
+      size_t total = 0;
+      uint64_t next = kNoStart;
+      for (const Worker& w : W_) total += w.store[ctl_.rec_parity].size(), next = std::min(next, w.next_start);
+      if (records_) {
+        ctl_.out_parity = ctl_.rec_parity;
+        out_base_ = out_size_;
+        out_size_ += total;
+        if (keep_) keep_->resize_for_overwrite(out_size_);
+      }
+      if (next == kNoStart) {
+        ++rastered_;
+        ctl_.raster = -1;
+      } else {
+        ctl_.raster_end = add_weight(next, step_);
+      }
+    }
+    if (ctl_.setup >= 0) {  // batch ctl_.setup is set up: the producers' bases
+      const int q = (int)(ctl_.setup & 1);
+      uint64_t wsum = 0, tsum = 0;
+      for (int t = 0; t < T_; ++t) {
+        base_weight_[q][(size_t)t] = wsum, base_tri_[q][(size_t)t] = tsum;
+        wsum = add_weight(wsum, W_[(size_t)t].batch[q].weight);
+        tsum += W_[(size_t)t].batch[q].n;
+      }
+      batch_empty_[q] = tsum == 0;
+      set_up_ = ctl_.setup + 1;
+      ctl_.setup = -1;
+    }
+    if (failed_.load(std::memory_order_relaxed)) {
+      ctl_.done = true;
+      return;
+    }
+    if (ctl_.raster < 0) {
+      while (rastered_ < set_up_ && batch_empty_[rastered_ & 1]) ++rastered_;
+      if (rastered_ < set_up_) {  // the next batch from its first item (weight 0)
+        ctl_.raster = rastered_;
+        ctl_.raster_end = add_weight(0, step_);
+        for (Worker& w : W_) w.cur_p = 0, w.cur_r = 0, w.cur_k = 0;
+      }
+    }
+    const int64_t busy = ctl_.raster >= 0 ? ctl_.raster : rastered_;
+    if (set_up_ < nbatches_ && set_up_ <= busy + 1) ctl_.setup = set_up_;
+    if (ctl_.raster >= 0) ctl_.rec_parity ^= 1;
+    ctl_.done = ctl_.raster < 0 && ctl_.setup < 0 && ctl_.out_parity < 0;
+  }
+
+  const Config& cfg_;
+  const DrawState& st_;
+  const std::vector<ClipTriangle>& tris_;
+  FrameOutput& f_;
+  FragmentStore* keep_;
+  FragmentSink* sink_;
+  ThreadObserver* obs_;
+  std::vector<Worker>& W_;
+  const int T_;
+  const int64_t R_;
+  const size_t B_;
+  const uint64_t step_;
+  const bool records_;
+  const int nv_;
+  const int64_t nbatches_;
+  Barrier barrier_;
+  std::atomic<bool> failed_{false};
+  bool reuse_depth_ = false;
+  int band_shift_ = -1;  // log2 band_rows when a power of two
+
+  // The step every thread runs next; written by decide() only, between two steps.
+  struct Control {
+    bool done = false;
+    bool fill_depth = false;
+    int64_t setup = -1;       // batch set up in this step (−1: none)
+    int64_t raster = -1;      // batch rasterised in this step (−1: none) …
+    uint64_t raster_end = 0;  // … its items that start below this weight
+    int rec_parity = 1;       // buffers of this step's records (flips at each raster step)
+    int out_parity = -1;      // buffers of the previous raster step, output in this step (−1: none)
+  } ctl_;
+  size_t out_base_ = 0, out_size_ = 0;  // first record of the step being output; records so far
+  int64_t set_up_ = 0, rastered_ = 0;   // batches set up, batches rasterised
+  bool batch_empty_[2] = {true, true};
+  std::vector<uint64_t> base_weight_[2], base_tri_[2];  // per producer, by batch parity
+  std::vector<std::vector<size_t>> head_, before_;  // output() scratch, per thread
+};
+
 }  // namespace
 
 void run_raster_unit_threads(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
                              FrameOutput& f, FragmentStore* keep, FragmentSink* sink, const ThreadOptions& opts) {
-  if (opts.threads < 1 || opts.band_rows < 1 || opts.batch_prims < 1)
+  if (opts.threads < 1 || opts.band_rows < 1 || opts.batch_prims < 1 || opts.step_pixels < 1)
     throw std::invalid_argument("thread options: threads " + std::to_string(opts.threads) + ", band_rows " +
                                 std::to_string(opts.band_rows) + ", batch_prims " + std::to_string(opts.batch_prims) +
-                                " (each must be ≥ 1)");
+                                ", step_pixels " + std::to_string(opts.step_pixels) + " (each must be ≥ 1)");
   if (keep && sink) throw std::invalid_argument("run_raster_unit_threads: keep and sink both given");
-  KeepFragments keeper(keep ? *keep : f.fragments);
-  FragmentSink* out = keep ? &keeper : sink;
   if (opts.threads == 1) {  // the sequential chain itself
+    KeepFragments keeper(keep ? *keep : f.fragments);
     NoTaps taps;
     if (keep && keep != &f.fragments) keep->shape(st.num_varyings);
-    run_raster_unit_to(cfg, st, tris, f, out, taps);
+    run_raster_unit_to(cfg, st, tris, f, keep ? &keeper : sink, taps);
     return;
   }
-  frame_begin(cfg, st, f);
-  if (keep) keep->shape(st.num_varyings);
-  const int T = opts.threads;
-  const bool varyings = out != nullptr;
-  const int nv = varyings ? st.num_varyings : 0;
-  const size_t B = (size_t)opts.batch_prims;
-  const size_t nbatches = (tris.size() + B - 1) / B;
-  const int64_t R = opts.band_rows;
-  std::vector<Worker> W((size_t)T);
-  std::atomic<bool> failed{false};
-  Barrier barrier(T);
-
-  const auto body = [&](int w) {
-    Worker& me = W[(size_t)w];
-    NoTaps taps;
-    GeometryChain<NoTaps> geometry(cfg, st, taps);
-    SetupStage setup(cfg, st, varyings);
-    me.store.shape(st.num_varyings);
-    KeepFragments to_store(me.store);
-    FragmentChain<NoTaps> chain(cfg, st, me.stats, f.depth.data(), f.width, varyings ? &to_store : nullptr, taps);
-    InputTriangle in;
-    std::vector<SetupTriangle> pieces;
-    uint64_t seq = 0;  // sequence number of the next triangle rasterised
-    // Stages 6–10 of one triangle on this thread's bands.
-    const auto raster = [&](const TriangleEquations& eq) {
-      const int y0 = eq.edges.y0, y1 = eq.edges.y1;
-      if (y1 < y0 || eq.edges.x1 < eq.edges.x0) return;
-      const int64_t b0 = floor_div64((int64_t)y0 - st.viewport_y, R), b1 = floor_div64((int64_t)y1 - st.viewport_y, R);
-      for (int64_t b = b0 + ((w - b0) % T + T) % T; b <= b1; b += T) {
-        const int64_t r0 = st.viewport_y + b * R;
-        const size_t begin = me.store.size();
-        chain.rows(eq, (int)std::max<int64_t>(r0, y0), (int)std::min<int64_t>(r0 + R - 1, y1));
-        if (me.store.size() > begin) me.runs.push_back({seq, b, begin, me.store.size()});
-      }
-    };
-    for (size_t step = 0; step <= nbatches; ++step) {
-      if (!failed.load(std::memory_order_relaxed)) {
-        try {
-          if (step >= 1) {  // rasterise batch step − 1: every thread's triangles, in thread order
-            const int buf = (int)((step - 1) & 1);
-            for (int t = 0; t < T; ++t) {
-              const Worker& src = W[(size_t)t];
-              for (size_t i = 0; i < src.n_eqs[buf]; ++i, ++seq) raster(src.eqs[buf][i]);
-            }
-          }
-          if (step < nbatches) {  // set up this thread's share of batch `step`
-            const int buf = (int)(step & 1);
-            const size_t lo = step * B, len = std::min(B, tris.size() - lo);
-            const size_t p0 = lo + len * (size_t)w / (size_t)T, p1 = lo + len * (size_t)(w + 1) / (size_t)T;
-            size_t& n = me.n_eqs[buf];
-            std::vector<TriangleEquations>& eqs = me.eqs[buf];
-            n = 0;
-            for (size_t p = p0; p < p1; ++p) {
-              ++me.stats.prims_in;
-              in.prim = (uint32_t)p;
-              in.tri = tris[p];
-              pieces.clear();
-              if (!count_geometry(me.stats, geometry.run(in, pieces, me.stats))) continue;
-              PrimDisposition d;
-              d.range = geometry.pieces_rejected() > 0;
-              for (const SetupTriangle& t : pieces)
-                d.add(me.stats, setup.step(t, [&](const TriangleEquations& eq) {
-                  if (n == eqs.size()) eqs.emplace_back();
-                  copy_used(eq, nv, eqs[n++]);
-                }));
-              d.count(me.stats, pieces.empty());
-            }
-          }
-        } catch (...) {
-          me.error = std::current_exception();
-          failed = true;
-        }
-      }
-      barrier.wait();
-    }
-  };
-  {
-    std::vector<std::thread> threads;
-    threads.reserve((size_t)T - 1);
-    for (int w = 1; w < T; ++w) threads.emplace_back(body, w);
-    body(0);
-    for (std::thread& t : threads) t.join();
-  }
-  for (Worker& w : W)
-    if (w.error) std::rethrow_exception(w.error);
-  for (Worker& w : W) add_stats(f.stats, w.stats);
-  if (!out) return;
-
-  // The fragment stream: the runs of all threads in (triangle, band) order.
-  size_t total = 0;
-  for (const Worker& w : W) total += w.store.size();
-  if (keep) keep->reserve(keep->size() + total);
-  else sink->draw_state(st);
-  std::vector<size_t> head((size_t)T, 0);
-  for (;;) {
-    int best = -1;
-    for (int t = 0; t < T; ++t) {
-      const std::vector<Run>& r = W[(size_t)t].runs;
-      if (head[(size_t)t] == r.size()) continue;
-      if (best < 0) { best = t; continue; }
-      const Run &a = r[head[(size_t)t]], &b = W[(size_t)best].runs[head[(size_t)best]];
-      if (a.tri < b.tri || (a.tri == b.tri && a.band < b.band)) best = t;
-    }
-    if (best < 0) break;
-    const Run& run = W[(size_t)best].runs[head[(size_t)best]++];
-    const FragmentStore& src = W[(size_t)best].store;
-    if (keep) keep->append(src, run.begin, run.end - run.begin);
-    else
-      for (size_t i = run.begin; i < run.end; ++i) sink->emit(src[i]);
-  }
+  PoolLease pool(opts.threads);
+  FrameRun run(cfg, st, tris, f, keep, sink, opts, (*pool).workers());
+  run.run(*pool);
 }
 
 FrameOutput run_raster_unit(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,

@@ -1,21 +1,27 @@
 // model/unit/threads.hpp — the raster unit on several threads, bit-identical to one thread
 // (docs/speed.md, "Deterministic threads": the choice and its measured figures).
 //
-// Geometry and setup by primitive batches, the back end by interleaved bands of rows:
+// Geometry and setup by primitive batches, the back end by interleaved bands of rows, in steps
+// separated by one barrier each:
 //   - the primitives are taken in batches of `batch_prims`; each thread runs stages 1–5 on its
-//     contiguous share of a batch (a pure function of the primitive) and counts the primitive's
-//     disposition; the batch's triangle equations, in primitive order, are the threads'
-//     lists concatenated in thread order;
+//     contiguous share of a batch (a pure function of the primitive), counts the primitive's
+//     disposition and routes each set-up triangle to the threads owning one of its bands;
 //   - the window rows are cut into bands of `band_rows` rows, band b (from the viewport's bottom)
-//     belongs to thread b mod threads; every thread runs stages 6–10 of every triangle of the
-//     batch on its own bands only, in triangle order. A depth-buffer word is touched by one
-//     thread only, in the order of one thread: the depth buffer, every depth-test result and
-//     every fragment are those of the sequential unit;
-//   - a thread keeps its fragments as compact records with a run mark per (triangle, band); the
-//     frame's fragment stream is the runs ordered by (triangle, band) — the sequential order,
-//     rows bottom to top — and the statistics are sums of per-thread counters.
-// The two phases are pipelined: in step k each thread rasterises batch k − 1 and sets up batch
-// k (two equation buffers), one barrier per step.
+//     belongs to thread b mod threads: a depth-buffer word is touched by one thread only, in the
+//     sequential order, so the depth buffer, every depth-test result and every fragment are
+//     those of the sequential unit;
+//   - a batch is rasterised in steps of about `step_pixels` candidate pixels: the triangles'
+//     bounding-box rows, in draw order, weighted by their width; a large triangle is cut into
+//     row chunks (the grazing plane of bench/peer_bench is two triangles). Every thread derives
+//     the same step boundaries from the same weights, so a step's fragments are a contiguous
+//     part of the sequential stream;
+//   - a thread keeps a step's fragments as compact records in its own buffer, one run per
+//     (triangle, band rows); in the next step each thread copies its runs into the frame's
+//     store at offsets ordered by (triangle, first row) — the sequential order — while the
+//     records are still in its cache (a sink is fed the runs in that order by the calling
+//     thread instead). The statistics are sums of per-thread counters.
+// The setup of batch k + 1 runs in the first raster step of batch k (two equation buffers). The
+// worker threads and their buffers persist between frames (one pool per calling thread).
 #pragma once
 
 #include <cstdint>
@@ -30,21 +36,46 @@ namespace fxr {
 
 // Rows per band: the bands go round-robin to the threads (docs/speed.md: measured choice).
 inline constexpr int kThreadBandRows = 8;
-// Primitives per batch between two barriers (docs/speed.md).
+// Primitives per batch (docs/speed.md).
 inline constexpr int kThreadBatchPrims = 2048;
+// Candidate pixels (bounding-box rows × width) per raster step (docs/speed.md: a step's records
+// stay in the threads' caches until they are copied).
+inline constexpr int kThreadStepPixels = 65536;
+
+// The phases a thread of run_raster_unit_threads goes through, reported to a ThreadObserver
+// (a bench times them; the model never reads a clock).
+enum class ThreadPhase : uint8_t {
+  Frame,   // the calling thread prepares the frame (validation, depth buffer)
+  Setup,   // stages 1–5 on this thread's share of a batch
+  Raster,  // stages 6–10 on this thread's bands of a step
+  Output,  // copying the previous step's records into the frame (or feeding the sink)
+  Wait,    // waiting at the barrier between two steps
+  Serial,  // the last thread at a barrier decides the next step (the others wait)
+  Done,    // the frame is finished for this thread
+};
+class ThreadObserver {
+ public:
+  virtual ~ThreadObserver() = default;
+  // Called by thread `thread` (0: the calling thread) when it enters phase `p`.
+  virtual void phase(int thread, ThreadPhase p) = 0;
+};
 
 struct ThreadOptions {
-  int threads = 1;                    // ≥ 1; 1 runs the sequential chain (model/unit/chain.hpp)
-  int band_rows = kThreadBandRows;    // ≥ 1
+  int threads = 1;                      // ≥ 1; 1 runs the sequential chain (model/unit/chain.hpp)
+  int band_rows = kThreadBandRows;      // ≥ 1
   int batch_prims = kThreadBatchPrims;  // ≥ 1
+  int step_pixels = kThreadStepPixels;  // ≥ 1
+  ThreadObserver* observer = nullptr;   // phases of every thread (threads ≥ 2), or none
 };
 
 // Contract: run_raster_unit_to(cfg, st, tris, f, sink, NoTaps) on opts.threads threads, with
 // the same result for every thread count (the fragment stream, the depth buffer, the
-// statistics). The fragments go to `keep` (appended as records, nullptr: not kept) or to `sink`
-// (emitted in order on the calling thread after the triangles are drawn; nullptr: none); with
-// neither, no varyings are computed. Prepares `f` (frame_begin). Invalid options (threads,
-// band_rows or batch_prims < 1): std::invalid_argument.
+// statistics). The fragments go to `keep` (emptied, then filled with the frame's records;
+// nullptr: not kept) or to `sink` (emitted in order on the calling thread while the triangles
+// are drawn; nullptr: none); with neither, no varyings are computed. Prepares `f`
+// (frame_begin). Invalid options (threads, band_rows, batch_prims or step_pixels < 1):
+// std::invalid_argument. Not re-entrant from a sink's emit on more than one level of nesting
+// per calling thread (a nested call gets its own threads).
 void run_raster_unit_threads(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
                              FrameOutput& f, FragmentStore* keep, FragmentSink* sink, const ThreadOptions& opts);
 

@@ -1,7 +1,7 @@
 // The threaded raster unit (model/unit/threads.hpp) against the sequential chain: for every
-// thread count, band height and batch size the fragment stream (every field of every
-// fragment, in order), the depth buffer and every statistic equal those of run_raster_unit
-// on one thread (the reference: the chain of model/unit/chain.hpp, tested on its own against
+// thread count, band height, batch size and raster step size the fragment stream (every field
+// of every fragment, in order), the depth buffer and every statistic equal those of
+// run_raster_unit on one thread (the reference: the chain of model/unit/chain.hpp, tested on its own against
 // the exact references in the other model tests). Scenes: the committed example scenes
 // (clipping, the near plane, the guard band, the depth functions, lines), the default scene,
 // random overlapping triangles under every depth function, scissors and culling. Also the
@@ -96,7 +96,8 @@ void check_case(const Case& c, const std::vector<ThreadOptions>& opts) {
   const int nv = std::max(c.st.num_varyings, c.lines.empty() ? 0 : c.line_st.num_varyings);
   for (const ThreadOptions& o : opts) {
     const std::string what = c.name + " threads " + std::to_string(o.threads) + " band_rows " +
-                             std::to_string(o.band_rows) + " batch_prims " + std::to_string(o.batch_prims);
+                             std::to_string(o.band_rows) + " batch_prims " + std::to_string(o.batch_prims) +
+                             " step_pixels " + std::to_string(o.step_pixels);
     expect_same_frame(want, run_raster_unit(c.cfg, c.st, c.tris, c.line_st, c.lines, o), nv, what);
   }
   // A sink receives the same stream; without one the depth buffer and the counters still agree.
@@ -115,7 +116,7 @@ void check_case(const Case& c, const std::vector<ThreadOptions>& opts) {
   }
   for (int threads : {2, 3}) {
     ThreadOptions o;
-    o.threads = threads, o.band_rows = 2, o.batch_prims = 5;
+    o.threads = threads, o.band_rows = 2, o.batch_prims = 5, o.step_pixels = threads == 2 ? 40 : kThreadStepPixels;
     Record r;
     r.s.shape(c.st.num_varyings);
     FrameOutput f;
@@ -131,13 +132,17 @@ void check_case(const Case& c, const std::vector<ThreadOptions>& opts) {
   }
 }
 
+// Step sizes: one pixel (every row of a triangle its own raster item, most steps cut bands),
+// a few rows of a small triangle, and the default.
 std::vector<ThreadOptions> option_grid() {
   std::vector<ThreadOptions> v;
+  const int steps[] = {1, 37, kThreadStepPixels};
+  int i = 0;
   for (int t : {1, 2, 3, 7})
     for (int rows : {1, 3, kThreadBandRows})
       for (int batch : {1, 7, kThreadBatchPrims}) {
         ThreadOptions o;
-        o.threads = t, o.band_rows = rows, o.batch_prims = batch;
+        o.threads = t, o.band_rows = rows, o.batch_prims = batch, o.step_pixels = steps[i++ % 3];
         v.push_back(o);
       }
   return v;
@@ -191,8 +196,46 @@ TEST(Threads, RandomOverlapsUnderEveryDepthFunctionScissorAndCulling) {
 
 TEST(Threads, InvalidOptionsAreRejected) {
   const Case c = random_case(1, 3, 0);
-  for (ThreadOptions o : {ThreadOptions{0, 8, 10}, ThreadOptions{2, 0, 10}, ThreadOptions{2, 8, 0}})
+  for (ThreadOptions o : {ThreadOptions{0, 8, 10}, ThreadOptions{2, 0, 10}, ThreadOptions{2, 8, 0},
+                          ThreadOptions{2, 8, 10, 0}})
     EXPECT_THROW(run_raster_unit(c.cfg, c.st, c.tris, o), std::invalid_argument);
+}
+
+TEST(Threads, LargeTrianglesCutIntoRowChunksAtEveryStepSize) {
+  // Large overlapping triangles (each weighs far more than a small step): a triangle's rows are
+  // split over several raster steps, steps cut bands in the middle, and the records of one
+  // triangle are copied into the frame by several threads in several steps.
+  Case c = random_case(7, 24, 2);
+  for (ClipTriangle& t : c.tris)
+    for (ClipVertex& v : t.v) v.pos[0] *= 2.5f, v.pos[1] *= 2.5f;
+  std::vector<ThreadOptions> opts;
+  for (int t : {2, 3, 5})
+    for (int step : {1, 2, 7, 100, 999, kThreadStepPixels}) {
+      ThreadOptions o;
+      o.threads = t, o.band_rows = 1 + step % 6, o.batch_prims = 1 + step % 10, o.step_pixels = step;
+      opts.push_back(o);
+    }
+  check_case(c, opts);
+}
+
+TEST(Threads, AReusedFrameIsClearedByTheThreadsAndEqualsANewOne) {
+  // A FrameOutput of the viewport's size is cleared by the threads in their own bands (and its
+  // stores keep their memory); one of another size is allocated anew. Each frame equals the
+  // sequential unit's whatever the frame before it left.
+  Case a = random_case(11, 40, 1), b = random_case(12, 40, 1);
+  b.st.depth_func = DepthFunc::Greater;  // b's passing fragments need a depth buffer cleared to the maximum
+  Case small = random_case(13, 10, 1);
+  small.st.viewport_w = 31, small.st.viewport_h = 17;
+  for (int t : {2, 3}) {
+    ThreadOptions o;
+    o.threads = t, o.band_rows = 3, o.batch_prims = 6, o.step_pixels = 50;
+    FrameOutput f;
+    for (const Case* c : {&a, &b, &a, &small, &b}) {
+      run_raster_unit_threads(c->cfg, c->st, c->tris, f, &f.fragments, nullptr, o);
+      expect_same_frame(run_raster_unit(c->cfg, c->st, c->tris), f, c->st.num_varyings,
+                        c->name + " reused frame, threads " + std::to_string(t));
+    }
+  }
 }
 
 TEST(FragmentStore, RoundTripsTheExtremesOfEveryField) {
