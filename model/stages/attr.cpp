@@ -186,34 +186,86 @@ Plane make_attr_plane(const AttrSetup& s, const int64_t q[3]) {
   return p;
 }
 
-DepthSetup attr_depth_setup(const Config& cfg, const SetupTriangle& tri, const AttrSetup& a) {
+AttrEdgeTerms attr_edge_terms(const AttrSetup& s) {
+  // As make_attr_plane: E'_k(centre(i, j)) = a_k·X + b_k·Y + c_k with X = (2i + 1)·2^(F−1) − ox.
+  const i128 h = (i128)1 << (s.F - 1);
+  const i128 unit = (i128)1 << s.F;
+  const i128 X0 = (i128)s.i0 * unit + h - s.ox, Y0 = (i128)s.j0 * unit + h - s.oy;
+  AttrEdgeTerms t;
+  t.i0 = s.i0;
+  t.j0 = s.j0;
+  t.fits64 = true;
+  const auto fits = [](i128 v) { return v >= (i128)INT64_MIN && v <= (i128)INT64_MAX; };
+  for (int k = 0; k < 3; ++k) {
+    t.dx[k] = s.a[k] * unit;
+    t.dy[k] = s.b[k] * unit;
+    t.e0[k] = s.a[k] * X0 + s.b[k] * Y0 + s.c[k];
+    t.fits64 = t.fits64 && fits(t.dx[k]) && fits(t.dy[k]) && fits(t.e0[k]);
+  }
+  if (t.fits64)
+    for (int k = 0; k < 3; ++k) t.dx64[k] = (int64_t)t.dx[k], t.dy64[k] = (int64_t)t.dy[k], t.e064[k] = (int64_t)t.e0[k];
+  return t;
+}
+
+Plane attr_plane(const AttrEdgeTerms& t, const int64_t q[3]) {
+  Plane p;
+  p.i0 = t.i0;
+  p.j0 = t.j0;
+  if (t.fits64) {
+    for (int k = 0; k < 3; ++k) {  // int64 × int64: GCC's one widening imul
+      p.dx += (i128)t.dx64[k] * q[k];
+      p.dy += (i128)t.dy64[k] * q[k];
+      p.c += (i128)t.e064[k] * q[k];
+    }
+    return p;
+  }
+  for (int k = 0; k < 3; ++k) {
+    p.dx += t.dx[k] * q[k];
+    p.dy += t.dy[k] * q[k];
+    p.c += t.e0[k] * q[k];
+  }
+  return p;
+}
+
+namespace {
+DepthSetup attr_depth_setup_terms(const Config& cfg, const SetupTriangle& tri, const AttrSetup& a,
+                                  const AttrEdgeTerms& t) {
   // Vertex values z_k·(2^db − 1) kept to the absolute precision of z_k itself: z_frac_bits − db
   // fraction bits of an LSB (PRECISION IS LOST HERE: ≤ 2^−(z_frac_bits − db + 1) LSB, RNE, the
   // same as the rounding of z_k; 2^−9 LSB at D24). z_frac_bits + 1 signed bits.
   const RasterConfig& rc = cfg.raster;
-  const int64_t M = (int64_t)depth_max_code(rc);
   int64_t q[3];
   for (int k = 0; k < 3; ++k) q[k] = attr_depth_q(rc, tri.v[k].z);
   DepthSetup d;
-  d.z = make_attr_plane(a, q);
+  d.z = attr_plane(t, q);
   d.den = a.area2 << (rc.z_frac_bits - rc.depth_bits());
-  d.max_code = M;
+  d.max_code = (int64_t)depth_max_code(rc);
   return d;
+}
+void attr_interp_setup_terms(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const AttrEdgeTerms& t,
+                             InterpSetup& out) {
+  build_interp_planes(cfg, st, tri, out, [&](const int64_t q[3]) { return attr_plane(t, q); });
+}
+}  // namespace
+
+DepthSetup attr_depth_setup(const Config& cfg, const SetupTriangle& tri, const AttrSetup& a) {
+  return attr_depth_setup_terms(cfg, tri, a, attr_edge_terms(a));
 }
 
 bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, bool varyings,
                       TriangleEquations& eq) {
   const AttrSetup a = attr_setup(cfg, tri, eq.edges);
   if (!a.ok) return false;
-  eq.depth = attr_depth_setup(cfg, tri, a);
-  if (varyings) attr_interp_setup(cfg, st, tri, a, eq.interp);
+  const AttrEdgeTerms t = attr_edge_terms(a);  // once for every plane of the triangle
+  eq.depth = attr_depth_setup_terms(cfg, tri, a, t);
+  if (varyings) attr_interp_setup_terms(cfg, st, tri, t, eq.interp);
   else eq.interp.n = 0;
   return true;
 }
 
 void attr_interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const AttrSetup& a,
                        InterpSetup& out) {
-  build_interp_planes(cfg, st, tri, out, [&](const int64_t q[3]) { return make_attr_plane(a, q); });
+  attr_interp_setup_terms(cfg, st, tri, attr_edge_terms(a), out);
 }
 
 }  // namespace fxr

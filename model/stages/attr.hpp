@@ -73,8 +73,27 @@ struct AttrSetup {
 // near-degenerate triangles; barycentrics E'_k / 2A' do not depend on it).
 AttrSetup attr_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup& t);
 
-// Contract: the plane Σ_k E'_k(centre(i, j))·q[k] anchored at (a.i0, a.j0); exact.
+// Contract: the plane Σ_k E'_k(centre(i, j))·q[k] anchored at (a.i0, a.j0); exact. (The
+// reference: setup takes attr_plane below, the same values.)
 Plane make_attr_plane(const AttrSetup& a, const int64_t q[3]);
+
+// The attribute edge functions of one triangle at its plane anchor, shared by all its planes
+// (docs/speed.md "Shortcuts"): per edge k the steps one pixel right / up, a_k·2^F and b_k·2^F,
+// and the value E'_k(centre(i0, j0)); fits64 when all nine fit int64_t (then also in the *64
+// members). A triangle of a few pixels at F = 24 needs ≈ 2^53.
+struct AttrEdgeTerms {
+  i128 dx[3] = {}, dy[3] = {}, e0[3] = {};
+  int64_t dx64[3] = {}, dy64[3] = {}, e064[3] = {};
+  bool fits64 = false;
+  int i0 = 0, j0 = 0;
+};
+AttrEdgeTerms attr_edge_terms(const AttrSetup& a);
+
+// Contract: make_attr_plane(a, q) for t = attr_edge_terms(a), bit for bit: Σ_k term_k·q[k] with
+// the terms formed once per triangle; each product int64_t × int64_t → i128 (one widening
+// multiply) when t.fits64, else i128 × i128. Tests: AttrPlane.* (tests/model/attr_test.cpp),
+// 10^8 random in attr_slow_test.cpp.
+Plane attr_plane(const AttrEdgeTerms& t, const int64_t q[3]);
 
 // Contract: the depth plane's vertex value of a vertex with depth z (z_frac_bits):
 // RNE(z·(2^db − 1) / 2^db), i.e. z·(2^db − 1) with z_frac_bits − db fraction bits of an LSB.

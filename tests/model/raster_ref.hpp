@@ -21,6 +21,11 @@ inline mpz_class to_mpz(int64_t v) {
   return v < 0 ? mpz_class(-to_mpz_u(m)) : to_mpz_u(m);
 }
 
+inline mpz_class to_mpz(i128 v) {
+  const u128 m = v < 0 ? (u128)0 - (u128)v : (u128)v;
+  return (v < 0 ? -1 : 1) * ((to_mpz_u((uint64_t)(m >> 64)) << 64) + to_mpz_u((uint64_t)m));
+}
+
 // sig · 2^exp exactly.
 inline mpq_class to_mpq(const FxFloat& f) {
   mpq_class q(to_mpz_u(f.sig));

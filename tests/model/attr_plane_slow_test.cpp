@@ -1,0 +1,17 @@
+// 10^8 random cases of the attribute planes' fast path against the reference make_attr_plane
+// (attr_plane_cases.hpp; the directed cases and 10^6 random are in attr_plane_test.cpp). Slow
+// label: ≈ a minute.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "attr_plane_cases.hpp"
+
+using namespace fxr;
+using namespace fxr::attr_cases;
+
+TEST(AttrPlaneSlow, HundredMillionRandomCasesEqualTheReference) {
+  const uint64_t n = 100000000;
+  const uint64_t fits = check_random(0xa77e5, n, [](const PlaneCase&, uint64_t) {});
+  std::printf("fast path taken in %llu of %llu cases\n", (unsigned long long)fits, (unsigned long long)n);
+}
