@@ -174,6 +174,7 @@ class Pool {
   int size() const { return n_; }
   std::vector<Worker>& workers() { return workers_; }
   bool busy = false;
+  size_t last_records = 0;  // records the last frame kept: the next one reserves as many
 
   template <class Fn>
   void run(Fn& fn) {
@@ -296,6 +297,8 @@ class FrameRun {
         w.batch[q].route.resize((size_t)T_);
       }
     }
+    // The frame's store grows between steps (serial); a frame like the last needs no growth.
+    if (keep_) keep_->reserve(pool.last_records);
     ctl_.fill_depth = reuse_depth_;
     ctl_.setup = nbatches_ > 0 ? 0 : -1;
     ctl_.done = false;
@@ -314,6 +317,7 @@ class FrameRun {
     for (Worker& w : W_)
       if (w.error) std::rethrow_exception(w.error);
     for (Worker& w : W_) add_stats(f_.stats, w.stats);
+    pool.last_records = out_size_;
     phase(0, ThreadPhase::Done);
   }
 
