@@ -359,7 +359,13 @@ class FrameRun {
       phase(w, ThreadPhase::Wait);
       barrier_.wait([&] {
         phase(w, ThreadPhase::Serial);
-        decide();
+        try {
+          decide();
+        } catch (...) {  // the frame's store could not grow: every thread stops after this step
+          me.error = std::current_exception();
+          failed_ = true;
+          ctl_.done = true;
+        }
       });
       if (ctl_.done) break;
     }
