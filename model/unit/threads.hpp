@@ -74,8 +74,7 @@ struct ThreadOptions {
 // nullptr: not kept) or to `sink` (emitted in order on the calling thread while the triangles
 // are drawn; nullptr: none); with neither, no varyings are computed. Prepares `f`
 // (frame_begin). Invalid options (threads, band_rows, batch_prims or step_pixels < 1):
-// std::invalid_argument. Not re-entrant from a sink's emit on more than one level of nesting
-// per calling thread (a nested call gets its own threads).
+// std::invalid_argument. A call made from inside a sink's emit runs on threads of its own.
 void run_raster_unit_threads(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
                              FrameOutput& f, FragmentStore* keep, FragmentSink* sink, const ThreadOptions& opts);
 
