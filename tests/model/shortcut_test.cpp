@@ -369,3 +369,65 @@ TEST(Shortcut, VertexCacheWithCollidingSlotsAnswersOnlyForTheVertexItKeeps) {
   EXPECT_GT(cache.misses(), 10000u);  // the 4 slots are replaced all the time
   EXPECT_GT(cache.hits(), 1000u);
 }
+
+namespace {
+
+// What the stages do when nothing needs a varying: setup's planes, the samples' N and D, the
+// divider's inputs.
+struct WorkTap {
+  uint64_t planes = 0, samples = 0, samples_with_nd = 0, divides = 0;
+  template <class S>
+  void in(const typename S::In&) {
+    if constexpr (std::is_same<S, DivideStage>::value) ++divides;
+  }
+  template <class S>
+  void out(const typename S::Out& o) {
+    if constexpr (std::is_same<S, SetupStage>::value) planes += (uint64_t)o.interp.n;
+    if constexpr (std::is_same<S, InterpStage>::value) {
+      ++samples;
+      bool nd = o.den != 0;
+      for (int m = 0; m < kMaxVaryings; ++m) nd = nd || o.num[m] != 0;
+      samples_with_nd += nd;
+    }
+  }
+};
+
+}  // namespace
+
+// "No varyings → no divider work": a draw whose fragments nobody keeps (no sink) builds no
+// 1/w or v/w plane, steps no N or D and never reaches the divider, whatever its varying count,
+// and counts and depth-tests exactly as the same draw kept by a sink; a draw without varyings
+// kept by a sink builds no plane either (the divider gets D = N = 0: nothing to divide). The
+// draws with varyings and a sink show that the taps see the work when there is some.
+TEST(Shortcut, NoVaryingsMeansNoPlaneNoSumAndNoDivide) {
+  std::mt19937_64 rng(0x5c05);
+  const Config cfg;
+  for (int trial = 0; trial < 3; ++trial) {
+    DrawState st = state(200, 150, 0, 0, 2);
+    const std::vector<ClipTriangle> tris = random_scene(rng, 300, 2);
+    FrameOutput none, kept, novary;
+    WorkTap t_none, t_kept, t_novary;
+    KeepSink s_kept, s_novary;
+    run_raster_unit_to(cfg, st, tris, none, nullptr, t_none);
+    run_raster_unit_to(cfg, st, tris, kept, &s_kept, t_kept);
+    DrawState st0 = st;
+    st0.num_varyings = 0;
+    run_raster_unit_to(cfg, st0, tris, novary, &s_novary, t_novary);
+    // No sink: nothing of the varyings is computed past geometry.
+    EXPECT_EQ(t_none.planes, 0u);
+    EXPECT_EQ(t_none.samples_with_nd, 0u);
+    EXPECT_EQ(t_none.divides, 0u);
+    EXPECT_GT(t_none.samples, 1000u);
+    EXPECT_EQ(stats_fields(none.stats), stats_fields(kept.stats));
+    EXPECT_EQ(none.depth, kept.depth);
+    // Kept with varyings: planes, sums and divides happen (the taps can see them).
+    EXPECT_GT(t_kept.planes, 100u);
+    EXPECT_GT(t_kept.samples_with_nd, 1000u);
+    EXPECT_EQ(t_kept.divides, s_kept.v.size());
+    // Kept without varyings: no plane, no sum; the same fragments without their varyings.
+    EXPECT_EQ(t_novary.planes, 0u);
+    EXPECT_EQ(t_novary.samples_with_nd, 0u);
+    ASSERT_EQ(s_novary.v.size(), s_kept.v.size());
+    for (size_t i = 0; i < s_kept.v.size(); ++i) ASSERT_TRUE(same_fragment(s_novary.v[i], s_kept.v[i], 0)) << i;
+  }
+}
