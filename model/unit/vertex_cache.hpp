@@ -71,8 +71,15 @@ class VertexCache {
     if (!usable_) return false;
     if (++prims_ <= min_prims_) return false;
     if (buf_.empty()) allocate();
+    // The three slots are looked up after all three are requested (their cache misses overlap).
+    uint32_t key[3][4 + kMaxVaryings];
+    unsigned char* slot[3];
+    for (int i = 0; i < 3; ++i) {
+      slot[i] = locate(in.tri.v[i], key[i]);
+      __builtin_prefetch(slot[i]);
+    }
     for (int i = 0; i < 3; ++i)
-      if (!vertex(in.tri.v[i], out.v[i])) return false;
+      if (!vertex(in.tri.v[i], key[i], slot[i], out.v[i])) return false;
     out.prim = in.prim;
     return true;
   }
@@ -100,14 +107,17 @@ class VertexCache {
     buf_.assign(stride_ << bits_, 0);  // state 0 = kEmpty
   }
 
-  bool vertex(const ClipVertex& cv, SetupVertex& out) {
-    uint32_t key[4 + kMaxVaryings];
+  // The key words of `cv` (its float32 bits) and its slot.
+  unsigned char* locate(const ClipVertex& cv, uint32_t* key) {
     std::memcpy(key, cv.pos, sizeof(float) * 4);
     std::memcpy(key + 4, cv.var, sizeof(float) * (size_t)nv_);
     uint64_t h = 0;
     for (size_t k = 0; k < kw_; ++k) h = (h ^ key[k]) * 0x9E3779B97F4A7C15ull;
     const size_t i = bits_ > 0 ? (size_t)(h >> (64 - bits_)) : 0;
-    unsigned char* slot = reinterpret_cast<unsigned char*>(&buf_[i * stride_]);
+    return reinterpret_cast<unsigned char*>(&buf_[i * stride_]);
+  }
+
+  bool vertex(const ClipVertex& cv, const uint32_t* key, unsigned char* slot, SetupVertex& out) {
     Head head;
     std::memcpy(&head, slot, sizeof(Head));
     if (head.state != kEmpty && std::memcmp(slot + kKeyOffset, key, kw_ * sizeof(uint32_t)) == 0) {
