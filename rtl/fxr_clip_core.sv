@@ -105,7 +105,6 @@ module fxr_clip_core (
   localparam int PosCntBits = $clog2(SB + FixBits + 1);
   localparam int IB = EB + $clog2(PW) + 2;        // exponent arithmetic (signed)
   localparam int LzaBits = $clog2(AW + 1);
-  localparam int LzqBits = $clog2(QW + 1);
   localparam int NB = PB + 4;                     // guard-band arithmetic (signed)
   localparam int QtBits = MaxBits + 3;
   localparam int StepBits = $clog2(QtBits + 1);
@@ -261,7 +260,12 @@ module fxr_clip_core (
   } state_e;
   state_e state;
 
-  logic [2*MaxV*XB-1:0] pbuf;           // two banks of MaxV vertices, slot k at [k*XB +: XB]
+  // Two banks of MaxV vertices, slot b*MaxV + k. An unpacked array read and written at a slot
+  // index: Yosys infers a memory (decoders and N:1 multiplexers), where a flat vector with run-time
+  // part selects became barrel shifters over all 2*MaxV*XB bits (docs/rtl.md, "fxr_clip").
+  localparam int Slots = 2 * MaxV;
+  localparam int SlotBits = $clog2(Slots);
+  logic [XB-1:0] pbuf [Slots];
   logic bank;                            // the current polygon's bank
   logic [VIdxBits-1:0] n, m, i, vi, fi;  // vertices, next polygon's count, edge, side index, fan index
   logic [PlaneBits-1:0] plane;
@@ -274,22 +278,27 @@ module fxr_clip_core (
   logic [XB-1:0] cur_i, cur_j, cur_vi, cur_0, cur_f1, cur_f2;
   logic [VIdxBits-1:0] j;
   assign j = (i + 1'b1 == n) ? '0 : i + 1'b1;
-  // Slot k of a bank; indices beyond the buffer (never used) read slot 0.
-  function automatic int slot(input logic b, input logic [VIdxBits-1:0] k);
-    slot = 32'(b) * MaxV + (32'(k) < MaxV ? 32'(k) : 0);
+  // Slot k of a bank (k into one bank's side bits s_neg, s_zero; slot into pbuf); indices beyond
+  // the buffer (never used) read slot 0.
+  localparam int KBits = $clog2(MaxV);
+  function automatic logic [KBits-1:0] kslot(input logic [VIdxBits-1:0] k);
+    kslot = (32'(k) < MaxV) ? KBits'(k) : '0;
   endfunction
-  assign cur_i = pbuf[slot(bank, i) * XB +: XB];
-  assign cur_j = pbuf[slot(bank, j) * XB +: XB];
-  assign cur_vi = pbuf[slot(bank, vi) * XB +: XB];
-  assign cur_0 = pbuf[slot(bank, '0) * XB +: XB];
-  assign cur_f1 = pbuf[slot(bank, fi) * XB +: XB];
-  assign cur_f2 = pbuf[slot(bank, fi + 1'b1) * XB +: XB];
+  function automatic logic [SlotBits-1:0] slot(input logic b, input logic [VIdxBits-1:0] k);
+    slot = (b ? SlotBits'(MaxV) : '0) + SlotBits'(kslot(k));
+  endfunction
+  assign cur_i = pbuf[slot(bank, i)];
+  assign cur_j = pbuf[slot(bank, j)];
+  assign cur_vi = pbuf[slot(bank, vi)];
+  assign cur_0 = pbuf[slot(bank, '0)];
+  assign cur_f1 = pbuf[slot(bank, fi)];
+  assign cur_f2 = pbuf[slot(bank, fi + 1'b1)];
   // Sides of the edge's ends; the edge crosses the plane when they are strictly opposite.
   logic ni, zi, nj, zj, crossing;
-  assign ni = s_neg[slot(1'b0, i)];
-  assign zi = s_zero[slot(1'b0, i)];
-  assign nj = s_neg[slot(1'b0, j)];
-  assign zj = s_zero[slot(1'b0, j)];
+  assign ni = s_neg[kslot(i)];
+  assign zi = s_zero[kslot(i)];
+  assign nj = s_neg[kslot(j)];
+  assign zj = s_zero[kslot(j)];
   assign crossing = (!ni && !zi && nj) || (ni && !nj && !zj);
 
 
@@ -329,15 +338,22 @@ module fxr_clip_core (
   logic [QW-1:0] q_n;                  // |d_s - d_e|, normalised (msb set)
   logic signed [IB-1:0] q_lead;        // its msb index before normalising
 
-  function automatic logic [LzqBits-1:0] lzc_q(input logic [QW-1:0] x);
-    lzc_q = '0;
-    for (int k = 0; k < QW; k++)
-      if (x[k]) lzc_q = LzqBits'(QW - 1 - k);
-  endfunction
-  function automatic logic [LzaBits-1:0] lzc_a(input logic [AW-1:0] x);
-    lzc_a = '0;
-    for (int k = 0; k < AW; k++)
-      if (x[k]) lzc_a = LzaBits'(AW - 1 - k);
+  // Normalisation of a magnitude: {leading zeros, x shifted up by them}, in LzaBits steps (the value
+  // padded below to a power of two, shifted by 2^l where its top 2^l bits are zero) rather than a
+  // priority chain AW multiplexers deep; 0 for x = 0. Used for A (AW bits) and, placed at A's top,
+  // for q (QW <= AW bits: the same count, the normalised q in the top QW bits).
+  localparam int AP = 1 << LzaBits;  // > AW
+  function automatic logic [LzaBits+AW-1:0] norm_a(input logic [AW-1:0] x);
+    logic [AP-1:0] v;
+    logic [LzaBits-1:0] lz;
+    v = AP'(x) << (AP - AW);
+    lz = '0;
+    for (int l = LzaBits - 1; l >= 0; l--)
+      if ((v >> (AP - (1 << l))) == '0) begin
+        lz = lz | (LzaBits'(1) << l);
+        v = v << (1 << l);
+      end
+    norm_a = {(x == '0) ? '0 : lz, v[AP-1 -: AW]};
   endfunction
 
   // ---- one component of the new vertex ---------------------------------------------------------
@@ -522,9 +538,9 @@ module fxr_clip_core (
           out_q <= {in_flat[InBits-1 -: PrimBits], vin};
           out_last_o <= 1'b1;
           prim_q <= in_flat[InBits-1 -: PrimBits];
-          pbuf[0 +: XB] <= vin[2*XB +: XB];
-          pbuf[XB +: XB] <= vin[XB +: XB];
-          pbuf[2*XB +: XB] <= vin[0 +: XB];
+          pbuf[0] <= vin[2*XB +: XB];
+          pbuf[1] <= vin[XB +: XB];
+          pbuf[2] <= vin[0 +: XB];
           bank <= 1'b0;
           n <= VIdxBits'(3);
           plane <= '0;
@@ -537,8 +553,8 @@ module fxr_clip_core (
       SSide: begin
         logic [1:0] sd;
         sd = side_of(cur_vi, 32'(plane));
-        s_neg[slot(1'b0, vi)] <= sd[1];
-        s_zero[slot(1'b0, vi)] <= sd[0];
+        s_neg[kslot(vi)] <= sd[1];
+        s_zero[kslot(vi)] <= sd[0];
         any_out <= any_out | sd[1];
         vi <= (vi + 1'b1 == n) ? '0 : vi + 1'b1;
       end
@@ -560,7 +576,7 @@ module fxr_clip_core (
           i <= n;
         end else begin
           if (!ni) begin
-            pbuf[slot(~bank, m) * XB +: XB] <= cur_i;
+            pbuf[slot(~bank, m)] <= cur_i;
             m <= m + 1'b1;
           end
           if (!crossing) i <= i + 1'b1;
@@ -576,12 +592,15 @@ module fxr_clip_core (
       SQuot: begin
         logic signed [DW:0] q_raw;
         logic [QW-1:0] qm;
-        logic [LzqBits-1:0] lzq;
+        logic [LzaBits-1:0] lzq;
+        /* verilator lint_off UNUSEDSIGNAL */  // q's bits below its QW are the zeros placed there
+        logic [AW-1:0] qn;
+        /* verilator lint_on UNUSEDSIGNAL */
         q_raw = DW1'(d_s) - DW1'(d_e);
         q_neg <= q_raw < 0;
         qm = QW'(q_raw < 0 ? -q_raw : q_raw);
-        lzq = lzc_q(qm);
-        q_n <= qm << lzq;
+        {lzq, qn} = norm_a({qm, ALB'(0)});
+        q_n <= qn[AW-1 -: QW];
         q_lead <= IB'(QW - 1) - IB'(lzq);
         comp <= '0;
       end
@@ -606,8 +625,7 @@ module fxr_clip_core (
         logic [AW-1:0] a_mag, a_n;
         logic [LzaBits-1:0] lza;
         a_mag = AW'(acc < 0 ? -acc : acc);
-        lza = lzc_a(a_mag);
-        a_n = a_mag << lza;
+        {lza, a_n} = norm_a(a_mag);
         r_zero <= acc == '0;
         r_neg <= (acc < 0) ^ q_neg;
         rem <= {1'b0, a_n[AW-1 -: QW]};
@@ -630,7 +648,9 @@ module fxr_clip_core (
         steps <= steps - 1'b1;
       end
       SRound: begin
-        pbuf[slot(~bank, m) * XB + (NumComp - 1 - 32'(comp)) * VB +: VB] <= rnd_val();
+        // one component slice per constant c: no run-time part select inside the word
+        for (int c = 0; c < NumComp; c++)
+          if (32'(comp) == c) pbuf[slot(~bank, m)][(NumComp - 1 - c) * VB +: VB] <= rnd_val();
         if (32'(comp) == NumComp - 1) begin
           m <= m + 1'b1;
           created <= created + 1'b1;
