@@ -180,8 +180,11 @@ module fxr_clip_core (
   // the two terms' leading ones differ the larger decides the sign, if they are equal the terms
   // overlap within CM + SB bits of the common leading one, so aligning the one with the larger
   // exponent onto the other and adding in CM + SB + 2 bits is exact. No rounding anywhere.
-  // Returns {d < 0, d = 0}. A function called where it is used (21 times for the outcodes of an
-  // input triangle, once for the iterative clipper's vertex), in the clocked process.
+  // Returns {d < 0, d = 0}. A function called 21 times for the outcodes of an input triangle
+  // (combinational, below) and once for the iterative clipper's vertex (in the clocked process).
+  // Selections are ?: expressions rather than if statements: Yosys's proc_mux walks a process's
+  // whole decision tree once per signal assigned in it, and 22 inlined copies of if-based code
+  // made that pass take most of a synthesis's time.
   localparam int TB = CM + SB;            // term magnitude bits
   localparam int LB = EB + 2;             // leading-one exponents (signed)
   localparam int SumBits = TB + 2;
@@ -189,7 +192,7 @@ module fxr_clip_core (
   function automatic logic [LB-1:0] msb_idx(input logic [TB-1:0] x);
     msb_idx = '0;
     for (int k = 0; k < TB; k++)
-      if (x[k]) msb_idx = LB'(k);
+      msb_idx = x[k] ? LB'(k) : msb_idx;
   endfunction
   function automatic logic [1:0] plane_side(input logic a_neg, input logic [CM-1:0] a_mag, input logic b_neg,
                                             input logic [CM-1:0] b_mag, input logic wmin, input logic [VB-1:0] c,
@@ -211,35 +214,17 @@ module fxr_clip_core (
     l2 = e2 + $signed(msb_idx(m2));
     dexp = e1 - e2;
     sh = (dexp > 0) ? ShBits'(dexp) : ShBits'(-dexp);  // used only when < TB
-    m1a = m1;
-    m2a = m2;
-    if (dexp > 0) m1a = m1 << sh;
-    else m2a = m2 << sh;
+    m1a = (dexp > 0) ? m1 << sh : m1;
+    m2a = (dexp > 0) ? m2 : m2 << sh;
     s1 = n1 ? -$signed(SumBits'(m1a)) : $signed(SumBits'(m1a));
     s2 = n2 ? -$signed(SumBits'(m2a)) : $signed(SumBits'(m2a));
     sum = s1 + s2;
-    if (z1 && z2) begin
-      tn = 1'b0;
-      tz = 1'b1;
-    end else if (z1) begin
-      tn = n2;
-      tz = 1'b0;
-    end else if (z2) begin
-      tn = n1;
-      tz = 1'b0;
-    end else if (l1 != l2) begin
-      tn = (l1 > l2) ? n1 : n2;
-      tz = 1'b0;
-    end else begin
-      tn = sum[SumBits-1];
-      tz = ~|sum;
-    end
+    tn = (z1 && z2) ? 1'b0 : z1 ? n2 : z2 ? n1 : (l1 != l2) ? ((l1 > l2) ? n1 : n2) : sum[SumBits-1];
+    tz = (z1 && z2) ? 1'b1 : (z1 || z2 || l1 != l2) ? 1'b0 : ~|sum;
     // w - 2^WMinExp: negative for w <= 0 or a leading one below; zero iff w is that power of two.
     wl = e2 + $signed(msb_idx(TB'(w[VB-2 -: SB])));
-    wn = 1'b0;
-    wz = 1'b0;
-    if (~|w[VB-2 -: SB] || w[VB-1] || wl < LB'(fxr_rec_pkg::ClipWMinExp)) wn = 1'b1;
-    else if (wl == LB'(fxr_rec_pkg::ClipWMinExp)) wz = (w[VB-2 -: SB] & (w[VB-2 -: SB] - 1'b1)) == '0;
+    wn = ~|w[VB-2 -: SB] || w[VB-1] || wl < LB'(fxr_rec_pkg::ClipWMinExp);
+    wz = !wn && wl == LB'(fxr_rec_pkg::ClipWMinExp) && (w[VB-2 -: SB] & (w[VB-2 -: SB] - 1'b1)) == '0;
     plane_side = wmin ? {wn, wz} : {tn, tz};
   endfunction
   // Plane p's side of vertex x.
@@ -253,6 +238,8 @@ module fxr_clip_core (
       for (int tp = 0; tp < NumPlanes; tp++)
         outcodes[tv*NumPlanes + tp] = |(side_of(t[(2-tv)*XB +: XB], tp) & 2'b10);
   endfunction
+  logic [3*NumPlanes-1:0] oc_in;  // the input triangle's, read by the fast path on its transfer
+  assign oc_in = outcodes(vin);
 
   // ---- the iterative clipper's state -----------------------------------------------------------
   typedef enum logic [3:0] {
@@ -348,11 +335,10 @@ module fxr_clip_core (
     logic [LzaBits-1:0] lz;
     v = AP'(x) << (AP - AW);
     lz = '0;
-    for (int l = LzaBits - 1; l >= 0; l--)
-      if ((v >> (AP - (1 << l))) == '0) begin
-        lz = lz | (LzaBits'(1) << l);
-        v = v << (1 << l);
-      end
+    for (int l = LzaBits - 1; l >= 0; l--) begin
+      lz = ((v >> (AP - (1 << l))) == '0) ? lz | (LzaBits'(1) << l) : lz;
+      v = ((v >> (AP - (1 << l))) == '0) ? v << (1 << l) : v;
+    end
     norm_a = {(x == '0) ? '0 : lz, v[AP-1 -: AW]};
   endfunction
 
@@ -464,17 +450,15 @@ module fxr_clip_core (
       case (state)
         SIdle: begin
           if (take) begin
-            // the fast path: the 21 exact plane sides of the input triangle
-            logic [3*NumPlanes-1:0] oc;
-            oc = outcodes(vin);
+            // the fast path: the 21 exact plane sides of the input triangle (oc_in)
             done_created_o <= '0;
             if (!gb_valid) begin
               done_o <= 1'b1;
               done_outcome_o <= OB'(fxr_rec_pkg::ClipOutcomeRejectedViewport);
-            end else if (|(oc[0 +: NumPlanes] & oc[NumPlanes +: NumPlanes] & oc[2*NumPlanes +: NumPlanes])) begin
+            end else if (|(oc_in[0 +: NumPlanes] & oc_in[NumPlanes +: NumPlanes] & oc_in[2*NumPlanes +: NumPlanes])) begin
               done_o <= 1'b1;
               done_outcome_o <= OB'(fxr_rec_pkg::ClipOutcomeCulledOutside);
-            end else if (~|oc) begin
+            end else if (~|oc_in) begin
               done_o <= 1'b1;
               done_outcome_o <= OB'(fxr_rec_pkg::ClipOutcomeAccepted);
               out_valid_o <= 1'b1;
