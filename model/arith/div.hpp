@@ -145,6 +145,45 @@ inline DivSig div_sig_fast64(const DivConfig& c, uint64_t n, uint64_t d) {
   return round_increment(q, rne_round_up<uint64_t>(q, r, b), c.quot_bits, -k);
 }
 
+// ---- one reciprocal per pixel, several exact quotients (docs/speed.md "One reciprocal per pixel")
+// div_sig_fast64's result with the hardware division moved to the divisor alone: per pixel
+// R = floor((2^64 − 1) / b) (b = d·2^(W−db), the aligned divisor, one 64-bit division), then per
+// varying the estimate q0 = floor(num·R / 2^64) (one 64×64→128 multiply) and the exact remainder
+// r = num − q0·b decide. With num < 2^(W+qb) ≤ 2^63 (div_fast64_ok):
+//   R = (2^64 − 1)/b − ε, 0 ≤ ε < 1, so num·R/2^64 = num/b − num·(1 + ε·b)/(b·2^64)
+//   > num/b − 2·num/2^64 ≥ num/b − 1   (num/2^64 < ½), and ≤ num/b;
+// hence q0 ∈ {q − 1, q} (q = floor(num/b)), r ∈ [0, 2b), and one conditional step (r ≥ b:
+// q0 + 1, r − b) gives the exact q and r; the RNE decision is div_sig_fast64's. No floating
+// point: the estimate is an integer one (a double estimate of 1/b was measured slower on this
+// CPU, docs/speed.md). Contract: div_fast64_ok(c); operands as div_sig_fast64 (not checked);
+// R = div_recip64(c, d); returns exactly div_sig_fast64(c, n, d) (= div_sig_exact, tests/model/
+// div_test.cpp DivRecip64.*: exhaustive 12-bit-class shapes, random, ties and the estimate's
+// off-by-one reached; 10^8 in tests/model/div_slow_test.cpp).
+inline uint64_t div_recip64(const DivConfig& c, uint64_t d) {
+  const uint64_t b = d << (div_align_bits(c) - c.den_bits);
+  return b == 0 ? 0 : ~uint64_t{0} / b;
+}
+// The estimate alone: floor(num·R / 2^64) (exposed for the tests, which count its corrections).
+inline uint64_t div_recip64_estimate(uint64_t num, uint64_t R) { return (uint64_t)(((u128)num * R) >> 64); }
+// The quotient for n, d ≠ 0 with the widths as arguments (w = div_align_bits, nb, db, qb of the
+// configuration; constants where the caller knows them, model/stages/interp_span.hpp).
+inline DivSig div_sig_recip64_w(int w, int nb, int db, int qb, uint64_t n, uint64_t d, uint64_t R) {
+  const uint64_t a = n << (w - nb), b = d << (w - db);
+  const int k = a < b ? 1 : 0;
+  const uint64_t num = (a << k) << (qb - 1);       // exact: < 2^(W+qb) ≤ 2^63
+  uint64_t q = div_recip64_estimate(num, R);       // q − 1 or q
+  uint64_t r = num - q * b;                        // in [0, 2b)
+  const uint64_t fix = r >= b ? 1 : 0;
+  q += fix;
+  r -= fix * b;
+  return round_increment(q, rne_round_up<uint64_t>(q, r, b), qb, -k);
+}
+inline DivSig div_sig_recip64(const DivConfig& c, uint64_t n, uint64_t d, uint64_t R) {
+  if (d == 0) return {(uint64_t{1} << c.quot_bits) - 1, 0};  // saturated (div_sig contract)
+  if (n == 0) return {0, 0};
+  return div_sig_recip64_w(div_align_bits(c), c.num_bits, c.den_bits, c.quot_bits, n, d, R);
+}
+
 // shared_recip, the per-pixel half: Y, the reciprocal core's approximation of 1/bn at
 //   nr_frac_bits fraction bits (y = Y·2^−F), bn = b·2^−(W−1) ∈ [1, 2) the aligned divisor
 //   b = d·2^(W−db). d must be a den_bits significand with its msb set (else invalid_argument).

@@ -344,6 +344,44 @@ inline Normalized normalize_u128(u128 x, int bits, Round r) {
 
 }  // namespace detail
 
+// normalize(x, bits, Round::HalfEven) for values whose msb index m is known in advance — set up
+// once where m is constant (the plane sums along a span: docs/speed.md "The fused span"), then
+// each value is one add and one shift, no leading-zero count and no branch:
+//   shift = m − (bits − 1) > 0: RNE(x·2^−shift) = (x + 2^(shift−1) − 1 + bit0(x >> shift)) >> shift
+//   (below half: no carry into bit `shift`; above: one; exactly half: one iff the kept part is
+//   odd), a carry-out to 2^bits renormalises (sig 2^(bits−1), exp m + 1);
+//   shift ≤ 0: the exact left shift.
+// Contract: 1 ≤ bits ≤ 63, 0 ≤ m ≤ 126; sig(x, e) needs msb(x) == m (x < 2^127) and returns
+// normalize(x, bits, HalfEven).sig, e = its exp (Normalize64.AtKnownMsb* in tests/model/fixed_test.cpp).
+struct NormalizeAtMsb {
+  int bits = 1, m = 0, shift = 0;
+  u128 bias = 0;  // 2^(shift−1) − 1 (shift > 0)
+  NormalizeAtMsb() = default;
+  NormalizeAtMsb(int bits_, int m_) : bits(bits_), m(m_), shift(m_ - (bits_ - 1)) {
+    if (shift > 0) bias = ((u128)1 << (shift - 1)) - 1;
+  }
+  uint64_t sig(u128 x, int& e) const { return sig_bits(x, e, bits); }
+  // The same with `bits` passed in (== this->bits): a constant where the caller knows it.
+  uint64_t sig_bits(u128 x, int& e, int bits_) const {
+    uint64_t q;
+    if (shift >= 64) {  // the significand lies in the high word: 64-bit shifts only
+      const int s = shift - 64;
+      const uint64_t odd = ((uint64_t)(x >> 64) >> s) & 1;
+      q = (uint64_t)((x + bias + odd) >> 64) >> s;
+    } else if (shift > 0) {
+      const uint64_t odd = (uint64_t)(x >> shift) & 1;
+      q = (uint64_t)((x + bias + odd) >> shift);
+    } else {
+      e = m;
+      return (uint64_t)x << (-shift);
+    }
+    const int carry = (int)(q >> bits_);  // 0 or 1
+    q >>= carry;
+    e = m + carry;
+    return q;
+  }
+};
+
 // Contract: normalises x > 0 (x < 2^127) to a `bits`-bit significand with its msb set
 //   (1 ≤ bits ≤ 64). Drops low bits by rounding mode r; if rounding carries out (sig == 2^bits),
 //   renormalises (sig = 2^(bits−1), exp + 1). x == 0 gives sig 0, exp 0. Round::HalfEven with

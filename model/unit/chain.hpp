@@ -32,6 +32,7 @@
 #include "model/stages/divide.hpp"
 #include "model/stages/input.hpp"
 #include "model/stages/interp.hpp"
+#include "model/stages/interp_span.hpp"
 #include "model/stages/recip_stage.hpp"
 #include "model/stages/setup.hpp"
 #include "model/stages/traverse.hpp"
@@ -163,7 +164,9 @@ class FragmentChain {
         interp_(cfg, st, sink != nullptr),
         depth_(cfg, st, DepthBufferView{depth, width, st.viewport_x, st.viewport_y}),
         divide_(cfg, st, sink != nullptr),
-        count_only_(sink == nullptr && !st.depth_test && std::is_same<Taps, NoTaps>::value) {
+        count_only_(sink == nullptr && !st.depth_test && std::is_same<Taps, NoTaps>::value),
+        fused_(cfg, st, DepthBufferView{depth, width, st.viewport_x, st.viewport_y}, sink != nullptr),
+        use_fused_(std::is_same<Taps, NoTaps>::value && FusedSpan::applies(cfg)) {
     if (sink) sink->draw_state(st);
   }
 
@@ -200,6 +203,14 @@ class FragmentChain {
       stats_.fragments_depth_pass += (uint64_t)(sp.x1 - sp.x0 + 1);
       return;
     }
+    if (use_fused_) {  // no tap: stages 7–9 in one loop (model/stages/interp_span.hpp)
+      const uint64_t pass = fused_.run(eq, sp, [&](const Fragment& fr) {
+        if (sink_) sink_->emit(fr);
+      });
+      stats_.fragments_depth_pass += pass;
+      stats_.fragments_depth_fail += (uint64_t)(sp.x1 - sp.x0 + 1) - pass;
+      return;
+    }
     taps_.template in<InterpStage>(sp);
     interp_.step(eq, sp, [&](const PlaneSample& ps) {
       taps_.template out<InterpStage>(ps);
@@ -230,6 +241,8 @@ class FragmentChain {
   // No sink, the depth test off and no tap: stages 7–8 are skipped, the pixels only counted
   // (Shortcut.CountOnlyChainWithTheDepthTestOffEqualsTheFullPath, tests/model/shortcut_test.cpp).
   bool count_only_;
+  FusedSpan fused_;
+  bool use_fused_;  // NoTaps and FusedSpan::applies: span() takes the fused stages 7–9
 };
 
 // The primitive accounting of run_raster_unit. count_geometry: a primitive that left the

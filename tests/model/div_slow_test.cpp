@@ -1,4 +1,5 @@
-// The divider's inline 64-bit fast path (div_sig_fast64, docs/speed.md "Divider") against
+// The divider's inline 64-bit fast path (div_sig_fast64, docs/speed.md "Divider") and one reciprocal
+// per pixel (div_sig_recip64, "The fused span") against
 // div_sig_exact on 10^8 random operand pairs plus constructed ties at the default widths and
 // 10^7 at the fast path's limit W + qb = 63 (label slow: about a minute of one core).
 #include <gtest/gtest.h>
@@ -11,14 +12,17 @@ using namespace fxr;
 
 namespace {
 
-uint64_t count_mismatches(const DivConfig& c, uint64_t count, uint64_t seed) {
+// div_sig_fast64 (and, with recip, div_sig_recip64: one reciprocal per pixel) against div_sig_exact.
+uint64_t count_mismatches(const DivConfig& c, uint64_t count, uint64_t seed, bool recip = false) {
+  auto fast = [&](uint64_t n, uint64_t d) {
+    return recip ? div_sig_recip64(c, n, d, div_recip64(c, d)) : div_sig_fast64(c, n, d);
+  };
   std::mt19937_64 rng(seed);
   const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
   uint64_t bad = 0;
   for (uint64_t i = 0; i < count; ++i) {
     const uint64_t n = nlo + rng() % nlo, d = dlo + rng() % dlo;
-    if (div_sig_fast64(c, n, d) != div_sig_exact(c, n, d) && ++bad <= 5)
-      ADD_FAILURE() << "n=" << n << " d=" << d;
+    if (fast(n, d) != div_sig_exact(c, n, d) && ++bad <= 5) ADD_FAILURE() << "n=" << n << " d=" << d;
   }
   // Exact ties: n/d = (q + ½)·2^−(qb−1) with d = m·2^qb, n = (2q + 1)·m (halved when it
   // overflows nb bits and is even), and its neighbours.
@@ -34,7 +38,7 @@ uint64_t count_mismatches(const DivConfig& c, uint64_t count, uint64_t seed) {
     for (int delta = -1; delta <= 1; ++delta) {
       const uint64_t n = (uint64_t)a + delta, d = m << qb;
       if ((n >> (nb - 1)) != 1) continue;
-      if (div_sig_fast64(c, n, d) != div_sig_exact(c, n, d) && ++bad <= 5) ADD_FAILURE() << "tie n=" << n << " d=" << d;
+      if (fast(n, d) != div_sig_exact(c, n, d) && ++bad <= 5) ADD_FAILURE() << "tie n=" << n << " d=" << d;
     }
   }
   return bad;
@@ -60,5 +64,18 @@ TEST(DivFast64Slow, BitIdenticalToExactAtTheWidthLimit) {
   for (const DivConfig& c : {shape(39, 39, 24), shape(32, 32, 31), shape(20, 39, 24)}) {
     ASSERT_TRUE(div_fast64_ok(c));
     EXPECT_EQ(count_mismatches(c, 10'000'000, 102), 0u) << c.num_bits << "/" << c.den_bits << "/" << c.quot_bits;
+  }
+}
+
+// One reciprocal per pixel (div_sig_recip64, docs/speed.md "The fused span").
+TEST(DivRecip64Slow, BitIdenticalToExactOnHundredMillionAtDefaultWidths) {
+  const DivConfig c;
+  EXPECT_EQ(count_mismatches(c, 100'000'000, 201, true), 0u);
+}
+
+TEST(DivRecip64Slow, BitIdenticalToExactAtTheWidthLimit) {
+  for (const DivConfig& c : {shape(39, 39, 24), shape(32, 32, 31), shape(20, 39, 24)}) {
+    ASSERT_TRUE(div_fast64_ok(c));
+    EXPECT_EQ(count_mismatches(c, 10'000'000, 202, true), 0u) << c.num_bits << "/" << c.den_bits << "/" << c.quot_bits;
   }
 }

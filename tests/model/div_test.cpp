@@ -422,3 +422,89 @@ TEST(DivFast64, DirectedHardCases) {
   const DivConfig c;
   EXPECT_EQ(div_sig_fast64(c, 0xFFFFFFFFull, 1ull << 31), (DivSig{1ull << 23, 1}));
 }
+
+// ---- one reciprocal per pixel (div_sig_recip64, docs/speed.md "The fused span") -------------
+// The quotient from the integer reciprocal R = floor((2^64 − 1)/b), the estimate floor(num·R/2^64)
+// and one exact remainder correction, against div_sig_exact and the independent reference. The
+// estimate is one below the quotient in a fraction of the cases (the correction): each test
+// checks that both outcomes occurred.
+
+namespace {
+
+struct RecipOutcomes {
+  uint64_t exact = 0, corrected = 0;
+  // Counts whether the estimate for (n, d) needed the correction (from the definition: num / b).
+  void count(const DivConfig& c, uint64_t n, uint64_t d) {
+    const int w = div_align_bits(c);
+    const uint64_t a = n << (w - c.num_bits), b = d << (w - c.den_bits);
+    const uint64_t num = ((a < b ? a << 1 : a)) << (c.quot_bits - 1);
+    const uint64_t est = div_recip64_estimate(num, div_recip64(c, d));
+    if (est == num / b) ++exact;
+    else if (est + 1 == num / b) ++corrected;
+    else ADD_FAILURE() << "estimate off by more than one: n=" << n << " d=" << d;
+  }
+};
+
+}  // namespace
+
+TEST(DivRecip64, BitIdenticalToExactForAll12BitOperands) {
+  RecipOutcomes o;
+  for (const DivConfig& c : {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14),
+                             shape(DivAlgorithm::Radix2, 9, 12, 10), shape(DivAlgorithm::Radix2, 11, 11, 4),
+                             shape(DivAlgorithm::Radix2, 12, 12, 51)}) {  // 12 + 51 = 63: the limit
+    ASSERT_TRUE(div_fast64_ok(c));
+    const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
+    for (uint64_t d = dlo; d < 2 * dlo; ++d) {
+      const uint64_t R = div_recip64(c, d);
+      for (uint64_t n = nlo; n < 2 * nlo; ++n) {
+        const DivSig f = div_sig_recip64(c, n, d, R);
+        ASSERT_EQ(f, div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+        ASSERT_EQ(f, ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+        o.count(c, n, d);
+      }
+    }
+  }
+  EXPECT_GT(o.exact, 0u);
+  EXPECT_GT(o.corrected, 0u);
+}
+
+TEST(DivRecip64, BitIdenticalOnTenMillionPlusTiesAtDefaultAndEdgeWidths) {
+  std::vector<DivConfig> cs = {DivConfig{}};
+  for (const DivConfig& c : fast64_edge_shapes())
+    if (c.num_bits == c.den_bits) cs.push_back(c);
+  for (const DivConfig& c : cs) {
+    uint64_t mismatches = 0;
+    RecipOutcomes o;
+    random_and_ties(c, c.num_bits == 32 && c.quot_bits == 24 ? 10'000'000 : 1'000'000, 22,
+                    [&](uint64_t n, uint64_t d) {
+                      if (div_sig_recip64(c, n, d, div_recip64(c, d)) != div_sig_exact(c, n, d) && ++mismatches <= 5)
+                        ADD_FAILURE() << div_label(c) << " n=" << n << " d=" << d;
+                      if ((n & 255) == 0) o.count(c, n, d);
+                    });
+    EXPECT_EQ(mismatches, 0u) << div_label(c);
+    EXPECT_GT(o.exact, 0u) << div_label(c);
+    EXPECT_GT(o.corrected, 0u) << div_label(c);
+  }
+}
+
+TEST(DivRecip64, DirectedHardCases) {
+  std::vector<DivConfig> cs = fast64_edge_shapes();
+  cs.push_back(DivConfig{});
+  for (const DivConfig& c : cs) {
+    const uint64_t nlo = 1ull << (c.num_bits - 1), nhi = 2 * nlo - 1;
+    const uint64_t dlo = 1ull << (c.den_bits - 1), dhi = 2 * dlo - 1;
+    // Largest and smallest quotients, equal operands, one-off neighbours, D at its extremes, the specials.
+    const uint64_t ns[] = {nlo, nlo + 1, nhi, nhi - 1, nlo | (nlo >> 1)};
+    const uint64_t ds[] = {dlo, dlo + 1, dhi, dhi - 1, dlo | (dlo >> 1)};
+    for (uint64_t n : ns)
+      for (uint64_t d : ds) {
+        EXPECT_EQ(div_sig_recip64(c, n, d, div_recip64(c, d)), div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+        EXPECT_EQ(div_sig_recip64(c, n, d, div_recip64(c, d)), ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d))
+            << div_label(c) << " n=" << n << " d=" << d;
+      }
+    for (uint64_t d : ds) EXPECT_EQ(div_sig_recip64(c, 0, d, div_recip64(c, d)), div_sig_exact(c, 0, d));
+    for (uint64_t n : ns) EXPECT_EQ(div_sig_recip64(c, n, 0, div_recip64(c, 0)), div_sig_exact(c, n, 0));
+  }
+  const DivConfig c;
+  EXPECT_EQ(div_sig_recip64(c, 0xFFFFFFFFull, 1ull << 31, div_recip64(c, 1ull << 31)), (DivSig{1ull << 23, 1}));
+}

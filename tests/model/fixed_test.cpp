@@ -116,7 +116,7 @@ Normalized ref_normalize(u128 x, int bits) {
   return n;
 }
 
-// Both paths and GMP agree on x at `bits`; returns false (with a message) on the first mismatch.
+// Both paths of normalize(), NormalizeAtMsb and GMP agree on x at `bits`; returns false (with a message) on the first mismatch.
 ::testing::AssertionResult same_normalize(u128 x, int bits) {
   const Normalized f = detail::normalize_rne64(x, bits), g = detail::normalize_u128(x, bits, Round::HalfEven);
   const Normalized r = ref_normalize(x, bits);
@@ -127,6 +127,16 @@ Normalized ref_normalize(u128 x, int bits) {
                                            << std::dec << " bits " << bits << ": got sig " << p->sig << " exp "
                                            << p->exp << " inexact " << p->inexact << ", GMP sig " << r.sig
                                            << " exp " << r.exp << " inexact " << r.inexact;
+  // The normaliser set up for x's binade (NormalizeAtMsb, the fused span's path), both entry points.
+  if (x != 0) {
+    const NormalizeAtMsb at(bits, msb_index(x));
+    int e1 = -1, e2 = -1;
+    const uint64_t s1 = at.sig(x, e1), s2 = at.sig_bits(x, e2, bits);
+    if (s1 != r.sig || e1 != r.exp || s2 != r.sig || e2 != r.exp)
+      return ::testing::AssertionFailure() << "NormalizeAtMsb x = 0x" << std::hex << (uint64_t)(x >> 64) << "_"
+                                           << (uint64_t)x << std::dec << " bits " << bits << ": got sig " << s1
+                                           << " exp " << e1 << ", GMP sig " << r.sig << " exp " << r.exp;
+  }
   return ::testing::AssertionSuccess();
 }
 

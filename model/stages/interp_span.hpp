@@ -1,0 +1,262 @@
+// model/stages/interp_span.hpp — stages 7 (interpolators), 8 (depth test) and 9 (divider) fused
+// over one span: the fast path of the stage chain where no tap observes their boundaries
+// (FragmentChain::span, model/unit/chain.hpp). docs/speed.md "The fused span".
+//
+// The same values as InterpStage::step → DepthStage::step → DivideStage::step, computed with the
+// work that is constant along a span done once per span or per segment of it:
+//   - the depth code stepped in int64_t where depth_step_fits64 proves it (as InterpStage);
+//   - the depth function as a 3-bit mask of its answers to <, =, > (from depth_compare itself);
+//   - the plane sums D and N_m, affine in x, hence monotone along the span, as sign and magnitude
+//     (the magnitude stepped directly: −N by −dN); the span is cut into segments where every
+//     sum keeps its sign and binade (its msb), found by testing the segment's last value and, where
+//     a sum leaves, by one division for the exact exit pixel; inside a segment each normalisation
+//     is NormalizeAtMsb (model/arith/fixed.hpp: one add and one shift, no leading-zero count);
+//   - one reciprocal of D's significand per pixel and per varying one multiply and the exact
+//     remainder check (div_sig_recip64_w, model/arith/div.hpp): div_sig_fast64's result;
+//   - the default divider widths and 0, 1, 2 varyings as compile-time constants (other widths and
+//     counts: the same code with run-time values).
+// Applies where the stage divides with div_sig_fast64 (radix2, W + qb ≤ 63: every default).
+// Proven against the staged path: tests/model/interp_span_test.cpp (random triangles and long
+// grazing spans under every depth function, both stepper widths, binade exits, sign changes,
+// affine mode, default and other widths, 0–4 varyings; every counter below reached).
+#pragma once
+
+#include <cstdint>
+
+#include "model/arith/div.hpp"
+#include "model/arith/fixed.hpp"
+#include "model/config/config.hpp"
+#include "model/stages/depth.hpp"
+#include "model/stages/divide.hpp"
+#include "model/stages/interp.hpp"
+#include "model/unit/io.hpp"
+
+namespace fxr {
+
+// Bit k of the mask: depth_compare(func, incoming, stored) when incoming is below (k = 0), equal
+// to (k = 1) or above (k = 2) the stored code.
+inline unsigned depth_func_mask(DepthFunc f) {
+  return (depth_compare<uint32_t>(f, 0, 1) ? 1u : 0u) | (depth_compare<uint32_t>(f, 1, 1) ? 2u : 0u) |
+         (depth_compare<uint32_t>(f, 1, 0) ? 4u : 0u);
+}
+// The relation's bit index: 0 (<), 1 (=), 2 (>).
+inline unsigned depth_relation(uint32_t incoming, uint32_t stored) {
+  return (unsigned)(incoming >= stored) + (unsigned)(incoming > stored);
+}
+
+class FusedSpan {
+ public:
+  // What the fast path met (the tests check that every case was reached).
+  struct Counts {
+    uint64_t spans = 0, spans_z128 = 0;  // spans; of them stepped in i128 (else int64_t)
+    uint64_t segments = 0;               // segments (> spans: some sum left its binade)
+    uint64_t exits_divided = 0;          // segment ends found by the exit division
+    uint64_t sign_changes = 0;           // a sum re-armed with the other sign
+  };
+  const Counts& counts() const { return counts_; }
+
+  // True when the divider stage would divide with div_sig_fast64 (the path this one reproduces).
+  static bool applies(const Config& cfg) { return div_fast64_ok(cfg.div); }
+
+  // with_varyings false: fragments without varyings, as InterpStage / DivideStage.
+  FusedSpan(const Config& cfg, const DrawState& st, DepthBufferView buf, bool with_varyings = true)
+      : dc_(cfg.div),
+        nv_(with_varyings ? st.num_varyings : 0),
+        buf_(buf),
+        mask_(depth_func_mask(st.depth_func)),
+        test_(st.depth_test),
+        write_(st.depth_write),
+        widths_{div_align_bits(cfg.div), cfg.div.num_bits, cfg.div.den_bits, cfg.div.quot_bits},
+        default_widths_(widths_.w == DefaultWidths::w && widths_.nb == DefaultWidths::nb &&
+                        widths_.db == DefaultWidths::db && widths_.qb == DefaultWidths::qb) {}
+
+  // Contract: stages 7–9 on span `sp` of `t`: emit(const Fragment&) for every pixel that passes
+  // the depth test, left to right, the same Fragment values (x, y, depth, prim, var[0 … nv−1])
+  // and the same depth-buffer writes as the staged chain; returns the number of passing pixels.
+  template <class Emit>
+  uint64_t run(const TriangleEquations& t, const Span& sp, Emit&& emit) {
+    ++counts_.spans;
+    f_.prim = t.prim;
+    f_.y = sp.y;
+    const DepthStepper dz(t.depth, sp.x0, sp.y);
+    const int64_t n = (int64_t)sp.x1 - sp.x0 + 1;
+    if (nv_ > 0) {
+      den_.start(t.interp.den, sp, dc_.den_bits);
+      for (int m = 0; m < nv_; ++m) num_[m].start(t.interp.num[m], sp, dc_.num_bits);
+    }
+    if (default_widths_) return run_z(t, sp, dz, n, DefaultWidths{}, emit);
+    return run_z(t, sp, dz, n, widths_, emit);
+  }
+
+ private:
+  // The divider's widths: W = div_align_bits, num_bits, den_bits, quot_bits; the configuration's
+  // at run time, or the defaults as compile-time constants (the loop's shifts and masks fold).
+  struct Widths {
+    int w, nb, db, qb;
+  };
+  static constexpr DivConfig kDefaultDiv{};
+  struct DefaultWidths {
+    static constexpr int nb = kDefaultDiv.num_bits, db = kDefaultDiv.den_bits, qb = kDefaultDiv.quot_bits;
+    static constexpr int w = nb > db ? nb : db;  // div_align_bits
+  };
+
+  template <class W, class Emit>
+  uint64_t run_z(const TriangleEquations& t, const Span& sp, const DepthStepper& dz, int64_t n, const W& wd,
+                 Emit& emit) {
+    if (depth_step_fits64(dz, n)) {
+      DepthStepperT<int64_t> z = narrow64(dz);
+      return run_nv(t, sp, z, wd, emit);
+    }
+    ++counts_.spans_z128;
+    DepthStepperT<i128> z = dz;
+    return run_nv(t, sp, z, wd, emit);
+  }
+  // The number of varyings as a constant for 0, 1 and 2 (the loop over them unrolled), else nv_.
+  template <class Z, class W, class Emit>
+  uint64_t run_nv(const TriangleEquations& t, const Span& sp, Z& z, const W& wd, Emit& emit) {
+    switch (nv_) {
+      case 0: return loop<0>(t, sp, z, wd, emit);
+      case 1: return loop<1>(t, sp, z, wd, emit);
+      case 2: return loop<2>(t, sp, z, wd, emit);
+      default: return loop<-1>(t, sp, z, wd, emit);
+    }
+  }
+
+  // A plane sum along the span as sign and magnitude, the magnitude stepped directly (by −dx for
+  // a negative sum, mod 2^128: the signed value is always ±mag exactly), with the normaliser of
+  // its binade [lo, lo + width) (zero: [0, 1)). A sum is affine in x, so it leaves its binade a
+  // few times per span at most; then arm() re-derives sign, binade and normaliser.
+  struct Sum {
+    u128 mag = 0, step = 0, lo = 0, width = 1;
+    i128 dx = 0;
+    bool neg = false;
+    int bits = 1;
+    NormalizeAtMsb norm;
+
+    void start(const Plane& p, const Span& sp, int bits_) {
+      bits = bits_;
+      dx = p.dx;
+      arm(p.at(sp.x0, sp.y));
+    }
+    void arm(i128 v) {
+      neg = v < 0;
+      mag = neg ? (u128)0 - (u128)v : (u128)v;
+      step = neg ? (u128)0 - (u128)dx : (u128)dx;
+      if (mag == 0) {
+        lo = 0, width = 1;
+        return;
+      }
+      const int m = msb_index(mag);
+      lo = width = (u128)1 << m;
+      norm = NormalizeAtMsb(bits, m);
+    }
+    // Re-arms when the current value has left the binade (or changed sign), then returns how
+    // many pixels from the current one on (at most `limit` ≥ 1) stay in it: the whole rest when
+    // its last value is inside (the sum is monotone; a value that crossed zero is ≥ 2^127 mod
+    // 2^128, never inside), else the exact exit by one division.
+    int64_t run_length(int64_t limit, Counts& k) {
+      if (mag - lo >= width) {
+        const bool was = neg;
+        arm(neg ? -(i128)mag : (i128)mag);
+        k.sign_changes += was != neg ? 1 : 0;
+      }
+      if (mag + (u128)(limit - 1) * step - lo < width) return limit;
+      ++k.exits_divided;
+      const i128 st = (i128)step;  // ≠ 0 here
+      u128 q, r;
+      if (st > 0) {  // up to lo + width (exclusive): ⌈(lo + width − mag) / st⌉ pixels
+        udivmod128(lo + width - mag, (u128)st, q, r);
+        return (int64_t)q + (r != 0 ? 1 : 0);
+      }
+      udivmod128(mag - lo, (u128)0 - step, q, r);  // down to lo (inclusive)
+      return (int64_t)q + 1;
+    }
+    bool zero() const { return width == 1 && lo == 0; }
+  };
+
+  template <int NV, class Z, class W, class Emit>
+  uint64_t loop(const TriangleEquations& t, const Span& sp, Z& z, const W& wd, Emit& emit) {
+    const int nv = NV >= 0 ? NV : nv_;
+    uint32_t* codes = test_ ? buf_.codes + ((size_t)(sp.y - buf_.y0) * (size_t)buf_.width +
+                                            (size_t)((int64_t)sp.x0 - buf_.x0))
+                            : nullptr;
+    const int64_t x0 = sp.x0;
+    const int ed = t.interp.den_exp, qb1 = wd.qb - 1;
+    uint64_t pass_count = 0;
+    int64_t i = sp.x0;
+    while (i <= sp.x1) {
+      // A segment of pixels where every sum keeps its sign and binade.
+      int64_t len = (int64_t)sp.x1 - i + 1;
+      bool den_pos = true, lane_zero = false;
+      if (nv > 0) {
+        len = den_.run_length(len, counts_);
+        den_pos = !den_.neg && !den_.zero();
+        for (int m = 0; m < nv; ++m) {
+          len = num_[m].run_length(len, counts_);
+          lane_zero = lane_zero || num_[m].zero();
+        }
+      }
+      ++counts_.segments;
+      const int64_t end = i + len;
+      for (; i < end; ++i) {
+        const uint32_t code = z.code();
+        bool pass = true;
+        if (codes) {
+          uint32_t& stored = codes[i - x0];
+          pass = (mask_ >> depth_relation(code, stored)) & 1u;
+          if (pass && write_) stored = code;
+        }
+        if (pass) {
+          ++pass_count;
+          f_.x = (int32_t)i;
+          f_.depth = code;
+          if (nv > 0) {
+            if (!den_pos) {  // D ≤ 0: every varying 0 (divide_varying)
+              for (int m = 0; m < nv; ++m) f_.var[m] = FxFloat{};
+            } else {
+              int de;
+              const uint64_t d = den_.norm.sig_bits(den_.mag, de, wd.db);
+              de += ed;
+              const uint64_t R = ~uint64_t{0} / (d << (wd.w - wd.db));  // div_recip64
+              for (int m = 0; m < nv; ++m) {
+                const Sum& s = num_[m];
+                FxFloat& out = f_.var[m];
+                if (lane_zero && s.zero()) {
+                  out = FxFloat{};
+                  continue;
+                }
+                int ne;
+                const uint64_t a = s.norm.sig_bits(s.mag, ne, wd.nb);
+                const DivSig q = div_sig_recip64_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
+                out.neg = s.neg;
+                out.sig = q.sig;
+                out.exp = q.exp_adj + (ne + t.interp.num_exp[m]) - de - qb1;
+              }
+            }
+          }
+          emit(static_cast<const Fragment&>(f_));
+        }
+        z.step_x();
+        if (nv > 0) {
+          den_.mag += den_.step;
+          for (int m = 0; m < nv; ++m) num_[m].mag += num_[m].step;
+        }
+      }
+    }
+    return pass_count;
+  }
+
+  DivConfig dc_;
+  int nv_;
+  DepthBufferView buf_;
+  unsigned mask_;
+  bool test_, write_;
+  Widths widths_;
+  bool default_widths_;
+  Sum den_;
+  Sum num_[kMaxVaryings];
+  Counts counts_;
+  Fragment f_;
+};
+
+}  // namespace fxr

@@ -1,0 +1,305 @@
+// The fused stages 7–9 (FusedSpan, model/stages/interp_span.hpp) against the staged chain
+// (InterpStage → DepthStage → DivideStage, the reference path every other model test checks
+// against the exact references): every fragment field, every depth-buffer word and the pass /
+// fail counts equal, span by span, on random triangles (overlapping, under every depth
+// function, depth test and write on / off), long grazing spans whose plane sums cross binades
+// and zero, affine mode, the default divider widths (compile-time constants) and other widths
+// (run-time), 0–4 varyings. Each test also checks that the cases it is about were reached
+// (FusedSpan::Counts), and the whole chain (FragmentChain picks the fused path only without taps).
+#include <gtest/gtest.h>
+
+#include <random>
+#include <type_traits>
+#include <string>
+#include <vector>
+
+#include "model/config/validate.hpp"
+#include "model/stages/depth.hpp"
+#include "model/stages/divide.hpp"
+#include "model/stages/interp.hpp"
+#include "model/stages/interp_span.hpp"
+#include "model/stages/setup.hpp"
+#include "model/stages/traverse.hpp"
+#include "model/unit/chain.hpp"
+#include "model/unit/fragment_store.hpp"
+#include "model/unit/geometry.hpp"
+
+using namespace fxr;
+
+namespace {
+
+constexpr int kW = 160, kH = 120;
+
+bool same_fragment(const Fragment& a, const Fragment& b, int nv) {
+  bool same = a.prim == b.prim && a.x == b.x && a.y == b.y && a.depth == b.depth;
+  for (int k = 0; k < nv; ++k)
+    same = same && a.var[k].neg == b.var[k].neg && a.var[k].sig == b.var[k].sig && a.var[k].exp == b.var[k].exp;
+  return same;
+}
+
+DrawState viewport_state(int nv) {
+  DrawState st;
+  st.viewport_x = 2, st.viewport_y = -3, st.viewport_w = kW, st.viewport_h = kH;
+  st.num_varyings = nv;
+  return st;
+}
+
+// Random triangles, overlapping in depth, some large (long spans), some crossing w = 0 (clipped).
+std::vector<ClipTriangle> random_tris(uint64_t seed, int n, int nv) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> pos(-1.3f, 1.3f), zf(-0.2f, 1.0f), wf(0.05f, 6.0f), var(-5.0f, 5.0f);
+  std::vector<ClipTriangle> v;
+  for (int t = 0; t < n; ++t) {
+    ClipTriangle tri;
+    const float big = t % 5 == 0 ? 4.0f : 1.0f;
+    for (auto& x : tri.v) {
+      const float w = wf(rng);
+      x.pos[0] = pos(rng) * w * big, x.pos[1] = pos(rng) * w * big, x.pos[2] = zf(rng) * w, x.pos[3] = w;
+      // Varyings of both signs (N crosses zero inside the triangle), one nearly constant.
+      for (int k = 0; k < nv; ++k) x.var[k] = k == 3 ? 1.0f + var(rng) * 1e-6f : var(rng);
+    }
+    v.push_back(tri);
+  }
+  return v;
+}
+
+// A grazing plane as two triangles (w from near to far: the sums change binade along a row)
+// with varyings crossing zero in the middle of the screen.
+std::vector<ClipTriangle> grazing_plane(int nv, float w_far) {
+  ClipVertex a, b, c, d;
+  const float wn = 0.3f;
+  auto set = [&](ClipVertex& v, float x, float y, float w, float u) {
+    v.pos[0] = x * w, v.pos[1] = y * w, v.pos[2] = 0.5f * w, v.pos[3] = w;
+    for (int k = 0; k < nv; ++k) v.var[k] = k % 2 ? u * (float)(k + 1) : -u + 0.25f * (float)k;
+  };
+  set(a, -1.1f, -1.1f, wn, -3.0f), set(b, 1.1f, -1.1f, w_far, 2.0f), set(c, 1.1f, 1.1f, w_far, 5.0f),
+      set(d, -1.1f, 1.1f, wn, -1.0f);
+  ClipTriangle t0, t1;
+  t0.v[0] = a, t0.v[1] = b, t0.v[2] = c;
+  t1.v[0] = a, t1.v[1] = c, t1.v[2] = d;
+  return {t0, t1};
+}
+
+// Stages 5–9 of every triangle, each span through the staged stages (interp → depth → divide,
+// as FragmentChain composes them) on one depth buffer and through FusedSpan on another; every
+// emitted fragment and both buffers compared. Returns the fused path's counts.
+FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
+                          const std::string& what) {
+  const size_t words = (size_t)(st.viewport_w) * (size_t)st.viewport_h;
+  std::vector<uint32_t> buf_staged(words, (1u << cfg.raster.depth_bits()) - 1), buf_fused = buf_staged;
+  const DepthBufferView vs{buf_staged.data(), st.viewport_w, st.viewport_x, st.viewport_y};
+  const DepthBufferView vf{buf_fused.data(), st.viewport_w, st.viewport_x, st.viewport_y};
+  SetupStage setup(cfg, st, true);
+  TraverseStage traverse(cfg, st);
+  InterpStage interp(cfg, st, true);
+  DepthStage depth(cfg, st, vs);
+  DivideStage divide(cfg, st, true);
+  FusedSpan fused(cfg, st, vf, true);
+  RasterStats gs;
+  std::vector<SetupTriangle> pieces;
+  // Both buffers first hold the nearest codes of the odd-numbered triangles (a staged "less"
+  // pass), so that every depth function both passes and fails.
+  {
+    DrawState pre = st;
+    pre.depth_test = true, pre.depth_write = true, pre.depth_func = DepthFunc::Less;
+    SetupStage setup_pre(cfg, pre, false);
+    InterpStage interp_pre(cfg, pre, false);
+    DepthStage depth_pre(cfg, pre, vs);
+    for (size_t p = 1; p < tris.size(); p += 2) {
+      pieces.clear();
+      geometry(cfg, pre, tris[p], (uint32_t)p, pieces, gs);
+      for (const SetupTriangle& tri : pieces)
+        setup_pre.step(tri, [&](const TriangleEquations& eq) {
+          traverse.step(eq, [&](const Span& sp) {
+            interp_pre.step(eq, sp, [&](const PlaneSample& ps) { depth_pre.step(ps, [](const PlaneSample&) {}); });
+          });
+        });
+    }
+    buf_fused = buf_staged;
+  }
+  uint64_t frags = 0, bad = 0, fails = 0;
+  for (size_t p = 0; p < tris.size(); ++p) {
+    pieces.clear();
+    geometry(cfg, st, tris[p], (uint32_t)p, pieces, gs);
+    for (const SetupTriangle& tri : pieces)
+      setup.step(tri, [&](const TriangleEquations& eq) {
+        traverse.step(eq, [&](const Span& sp) {
+          std::vector<Fragment> want, got;
+          uint64_t pass_staged = 0;
+          interp.step(eq, sp, [&](const PlaneSample& ps) {
+            if (depth.step(ps, [&](const PlaneSample& q) { divide.step(q, [&](const Fragment& f) { want.push_back(f); }); }))
+              ++pass_staged;
+          });
+          const uint64_t pass_fused = fused.run(eq, sp, [&](const Fragment& f) { got.push_back(f); });
+          frags += want.size();
+          fails += (uint64_t)(sp.x1 - sp.x0 + 1) - pass_staged;
+          if (pass_fused != pass_staged || want.size() != got.size()) {
+            if (++bad <= 3) ADD_FAILURE() << what << ": span y " << sp.y << " x " << sp.x0 << ".." << sp.x1 << " passes " << pass_staged << " vs " << pass_fused;
+            return;
+          }
+          for (size_t i = 0; i < want.size(); ++i) {
+            if (!same_fragment(want[i], got[i], st.num_varyings) && ++bad <= 3)
+              ADD_FAILURE() << what << ": fragment (" << want[i].x << ", " << want[i].y << ") prim " << want[i].prim;
+          }
+        });
+      });
+  }
+  EXPECT_EQ(bad, 0u) << what;
+  EXPECT_TRUE(buf_staged == buf_fused) << what << ": depth buffers differ";
+  if (st.depth_func != DepthFunc::Never) {
+    EXPECT_GT(frags, 0u) << what << ": nothing drawn (the test would be vacuous)";
+  }
+  if (st.depth_test && st.depth_func != DepthFunc::Never && st.depth_func != DepthFunc::Always) {
+    EXPECT_GT(fails, 0u) << what << ": nothing failed the depth test";
+  }
+  return fused.counts();
+}
+
+Config widths_config(int nb, int db, int qb) {
+  Config c;
+  c.div.num_bits = nb, c.div.den_bits = db, c.div.quot_bits = qb;
+  c.raster.varying_out_sig_bits = qb;
+  derive_widths(c);
+  return c;
+}
+
+void add(FusedSpan::Counts& a, const FusedSpan::Counts& b) {
+  a.spans += b.spans, a.spans_z128 += b.spans_z128, a.segments += b.segments;
+  a.exits_divided += b.exits_divided, a.sign_changes += b.sign_changes;
+}
+
+// A tap (any tap type but NoTaps makes FragmentChain take the staged stages).
+struct Observe {
+  uint64_t samples = 0;
+  template <class S>
+  void in(const typename S::In&) {}
+  template <class S>
+  void out(const typename S::Out&) {
+    if (std::is_same<S, InterpStage>::value) ++samples;
+  }
+};
+
+}  // namespace
+
+TEST(FusedSpan, AppliesWhereTheStageDividesWithTheFast64Path) {
+  EXPECT_TRUE(FusedSpan::applies(Config{}));
+  EXPECT_TRUE(FusedSpan::applies(widths_config(39, 39, 24)));   // W + qb = 63
+  EXPECT_FALSE(FusedSpan::applies(widths_config(40, 40, 24)));  // 64: the staged u128 path
+  Config rm;
+  rm.div.algorithm = DivAlgorithm::RecipMul;
+  EXPECT_FALSE(FusedSpan::applies(rm));
+  Config sr;
+  sr.div.algorithm = DivAlgorithm::SharedRecip;
+  EXPECT_FALSE(FusedSpan::applies(sr));
+}
+
+TEST(FusedSpan, DepthFunctionMaskIsTheComparison) {
+  for (DepthFunc f : {DepthFunc::Never, DepthFunc::Less, DepthFunc::Equal, DepthFunc::LessEqual, DepthFunc::Greater,
+                      DepthFunc::NotEqual, DepthFunc::GreaterEqual, DepthFunc::Always}) {
+    const unsigned mask = depth_func_mask(f);
+    for (uint32_t a : {0u, 1u, 7u, 0xFFFFFFu, 0xFFFFFFFFu})
+      for (uint32_t b : {0u, 1u, 7u, 0xFFFFFFu, 0xFFFFFFFFu})
+        EXPECT_EQ(((mask >> depth_relation(a, b)) & 1u) != 0, depth_compare(f, a, b)) << (int)f << " " << a << " " << b;
+  }
+}
+
+TEST(FusedSpan, RandomTrianglesUnderEveryDepthStateEqualTheStagedPath) {
+  const DepthFunc funcs[] = {DepthFunc::Less, DepthFunc::Equal, DepthFunc::LessEqual, DepthFunc::Greater,
+                             DepthFunc::NotEqual, DepthFunc::GreaterEqual, DepthFunc::Always, DepthFunc::Never};
+  FusedSpan::Counts total;
+  int i = 0;
+  for (DepthFunc fn : funcs) {
+    for (int nv : {0, 1, 2, 4}) {
+      DrawState st = viewport_state(nv);
+      st.depth_func = fn;
+      st.depth_write = i % 3 != 2;
+      st.depth_test = i % 5 != 4;
+      const std::string what = "func " + std::to_string((int)fn) + " nv " + std::to_string(nv) + " test " +
+                               std::to_string(st.depth_test) + " write " + std::to_string(st.depth_write);
+      add(total, compare(Config{}, st, random_tris(500 + i, 40, nv), what));
+      ++i;
+    }
+  }
+  EXPECT_GT(total.spans, 1000u);
+  EXPECT_GT(total.segments, total.spans);  // sums left their binade inside spans
+  EXPECT_GT(total.exits_divided, 0u);
+  EXPECT_GT(total.sign_changes, 0u);       // and crossed zero
+}
+
+TEST(FusedSpan, GrazingPlanesAcrossBinadesAndZeroEqualTheStagedPath) {
+  FusedSpan::Counts total;
+  for (float w_far : {1.0f, 8.0f, 200.0f, 3000.0f})
+    for (int nv : {1, 2, 3, 4}) {
+      const DrawState st = viewport_state(nv);
+      add(total, compare(Config{}, st, grazing_plane(nv, w_far), "plane w_far " + std::to_string(w_far) + " nv " + std::to_string(nv)));
+    }
+  EXPECT_GT(total.segments, 2 * total.spans);
+  EXPECT_GT(total.sign_changes, 0u);
+}
+
+TEST(FusedSpan, OtherDividerWidthsAndAffineModeEqualTheStagedPath) {
+  FusedSpan::Counts total;
+  // Run-time widths (not the compile-time default shape), at the fast path's limit too.
+  for (const Config& cfg : {widths_config(28, 30, 20), widths_config(39, 39, 24), widths_config(32, 24, 16)}) {
+    ASSERT_NO_THROW(validate(cfg, "interp_span_test"));
+    for (int nv : {1, 2, 3}) {
+      DrawState st = viewport_state(nv);
+      const std::string what = "widths " + std::to_string(cfg.div.num_bits) + "/" + std::to_string(cfg.div.den_bits) +
+                               "/" + std::to_string(cfg.div.quot_bits) + " nv " + std::to_string(nv);
+      add(total, compare(cfg, st, random_tris(900 + nv, 30, nv), what));
+      add(total, compare(cfg, st, grazing_plane(nv, 50.0f), what + " plane"));
+    }
+  }
+  for (int nv : {1, 2}) {
+    DrawState st = viewport_state(nv);
+    st.interp = InterpMode::Affine;
+    add(total, compare(Config{}, st, random_tris(950 + nv, 30, nv), "affine nv " + std::to_string(nv)));
+  }
+  EXPECT_GT(total.segments, total.spans);
+}
+
+TEST(FusedSpan, BothDepthStepperWidthsAreReached) {
+  // Large and tiny w give depth planes whose stepping does not fit int64_t (depth_step_fits64).
+  FusedSpan::Counts total;
+  for (uint64_t seed : {1u, 2u, 3u}) {
+    std::vector<ClipTriangle> tris = random_tris(seed, 40, 2);
+    for (size_t t = 0; t < tris.size(); t += 2)
+      for (auto& v : tris[t].v)
+        for (int c = 0; c < 4; ++c) v.pos[c] *= 1e-30f;
+    add(total, compare(Config{}, viewport_state(2), tris, "scaled seed " + std::to_string(seed)));
+  }
+  EXPECT_GT(total.spans_z128, 0u);
+  EXPECT_LT(total.spans_z128, total.spans);
+}
+
+TEST(FusedSpan, TheChainTakesItOnlyWithoutTapsAndGivesTheSameFrame) {
+  // FragmentChain with NoTaps (fused) against the same chain observed by a tap (staged).
+  struct Keep : FragmentSink {
+    FragmentStore s;
+    void draw_state(const DrawState& st) override { s.widen(st.num_varyings); }
+    void emit(const Fragment& f) override { s.push_back(f); }
+  };
+  for (int nv : {0, 2, 3}) {
+    const DrawState st = viewport_state(nv);
+    std::vector<ClipTriangle> tris = random_tris(77 + nv, 50, nv);
+    for (const ClipTriangle& t : grazing_plane(nv, 40.0f)) tris.push_back(t);
+    Config cfg;
+    FrameOutput fa, fb;
+    Keep ka, kb;
+    ka.s.shape(nv), kb.s.shape(nv);
+    NoTaps none;
+    Observe obs;
+    run_raster_unit_to(cfg, st, tris, fa, &ka, none);
+    run_raster_unit_to(cfg, st, tris, fb, &kb, obs);
+    EXPECT_GT(obs.samples, 0u);  // the observed chain ran the staged stages
+    ASSERT_EQ(ka.s.size(), kb.s.size()) << nv;
+    ASSERT_GT(ka.s.size(), 0u);
+    uint64_t bad = 0;
+    for (size_t i = 0; i < ka.s.size(); ++i) bad += same_fragment(ka.s[i], kb.s[i], nv) ? 0 : 1;
+    EXPECT_EQ(bad, 0u) << nv;
+    EXPECT_TRUE(fa.depth == fb.depth) << nv;
+    EXPECT_EQ(fa.stats.fragments_depth_pass, fb.stats.fragments_depth_pass) << nv;
+    EXPECT_EQ(fa.stats.fragments_depth_fail, fb.stats.fragments_depth_fail) << nv;
+    EXPECT_EQ(fa.stats.fragments_generated, fb.stats.fragments_generated) << nv;
+  }
+}
