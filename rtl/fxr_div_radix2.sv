@@ -173,7 +173,7 @@ module fxr_div_radix2 #(
           .AlignBits(AlignBits),
           .QuotBits (QuotBits)
         ) u_step (
-          .en_i(StepEn),
+          .en_i(StepEn && v_q[SIn]),  // an empty stage's step is skipped (its result is not read)
           .r_i (r_c[JrIn +: RemBits]),
           .p_i (p_c[JpIn +: QuotBits]),
           .b_i (b_q[BIn +: AlignBits]),

@@ -135,6 +135,7 @@ module fxr_divide #(
     .OutBits(DenBits),
     .MsbBits(MB)
   ) u_norm_den (
+    .en_i (in_q_valid),  // read at issue_fire only
     .x_i  (den),
     .sig_o(d_sig),
     .msb_o(d_msb)
@@ -153,24 +154,30 @@ module fxr_divide #(
     logic                  valid_m, zero;
     logic signed [XB-1:0]  e_part;
     // varying m = gi * Lanes + l (lanes beyond NumVaryings divide 0 and are dropped)
+    // Evaluated only with a sample in in_q (read at issue_fire only): an idle stage costs the
+    // simulator nothing here (docs/rtl.md, "Co-simulation speed").
     always_comb begin
       num     = '0;
       num_exp = '0;
       valid_m = 1'b0;
-      for (int m = 0; m < NumVaryings; m++) begin
-        if (32'(gi) * Lanes + l == m) begin
-          num     = in_q[(NumVaryings - 1 - m) * PlB + EB +: IPB];
-          num_exp = in_q[(NumVaryings - 1 - m) * PlB +: EB];
-          valid_m = 1'b1;
+      mag     = '0;
+      if (in_q_valid) begin
+        for (int m = 0; m < NumVaryings; m++) begin
+          if (32'(gi) * Lanes + l == m) begin
+            num     = in_q[(NumVaryings - 1 - m) * PlB + EB +: IPB];
+            num_exp = in_q[(NumVaryings - 1 - m) * PlB +: EB];
+            valid_m = 1'b1;
+          end
         end
+        mag = num[IPB-1] ? IPB'(-num) : num;
       end
     end
-    assign mag = num[IPB-1] ? IPB'(-num) : num;
     fxr_divide_norm #(
       .InBits (IPB),
       .OutBits(NumBits),
       .MsbBits(MB)
     ) u_norm_num (
+      .en_i (in_q_valid),
       .x_i  (mag),
       .sig_o(sig),
       .msb_o(msb)

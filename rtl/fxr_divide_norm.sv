@@ -6,46 +6,60 @@
 //   x_i > 0: m = index of the leading one; sig_o = x * 2^(OutBits-1-m) when m < OutBits (exact),
 //   else RNE(x / 2^(m-OutBits+1)); a carry out of the rounding renormalises (sig_o = 2^(OutBits-1),
 //   m + 1). msb_o = m (+1 on the carry). x_i = 0: sig_o = 0, msb_o = 0.
+//   en_i low: sig_o = 0, msb_o = 0 whatever x_i (the caller reads the outputs only with en_i high;
+//   the simulator then skips the priority encoder and the wide shift: docs/rtl.md, "Co-simulation
+//   speed"). Tie it high where the outputs are always read.
 module fxr_divide_norm #(
   parameter int InBits  = 93,
   parameter int OutBits = 32,
   parameter int MsbBits = 8
 ) (
+  input  logic               en_i,
   input  logic [InBits-1:0]  x_i,
   output logic [OutBits-1:0] sig_o,
   output logic [MsbBits-1:0] msb_o
 );
   // Leading one (priority encoder) and the left shift that puts it at bit InBits-1.
   logic [MsbBits-1:0] m;
+  logic [InBits-1:0]  xn;
   always_comb begin
-    m = '0;
-    for (int i = 0; i < InBits; i++) begin
-      if (x_i[i]) m = MsbBits'(i);
+    m  = '0;
+    xn = '0;
+    if (en_i) begin
+      for (int i = 0; i < InBits; i++) begin
+        if (x_i[i]) m = MsbBits'(i);
+      end
+      xn = x_i << (MsbBits'(InBits - 1) - m);
     end
   end
-  logic [InBits-1:0] xn;
-  assign xn = x_i << (MsbBits'(InBits - 1) - m);
 
   if (InBits > OutBits) begin : gen_round
+    // the bits below the rounding bit (none when InBits = OutBits + 1)
+    localparam logic [InBits-1:0] StickyMask = (InBits'(1) << (InBits - OutBits - 1)) - InBits'(1);
     logic [OutBits-1:0] top;
     logic               rb, st, up;
     logic [OutBits:0]   inc;
-    assign top = xn[InBits-1 -: OutBits];
-    assign rb  = xn[InBits-OutBits-1];
-    if (InBits - OutBits >= 2) begin : gen_sticky
-      assign st = |xn[InBits-OutBits-2:0];
-    end else begin : gen_no_sticky
-      assign st = 1'b0;
-    end
-    assign up  = rb & (st | top[0]);
-    assign inc = {1'b0, top} + {{OutBits{1'b0}}, up};
     always_comb begin
-      if (inc[OutBits]) begin  // 1.11..1 rounded up: renormalise
-        sig_o = {1'b1, {(OutBits - 1){1'b0}}};
-        msb_o = m + 1'b1;
-      end else begin
-        sig_o = inc[OutBits-1:0];
-        msb_o = m;
+      top   = '0;
+      rb    = 1'b0;
+      st    = 1'b0;
+      up    = 1'b0;
+      inc   = '0;
+      sig_o = '0;
+      msb_o = '0;
+      if (en_i) begin
+        top = xn[InBits-1 -: OutBits];
+        rb  = xn[InBits-OutBits-1];
+        st  = |(xn & StickyMask);
+        up  = rb & (st | top[0]);
+        inc = {1'b0, top} + {{OutBits{1'b0}}, up};
+        if (inc[OutBits]) begin  // 1.11..1 rounded up: renormalise
+          sig_o = {1'b1, {(OutBits - 1){1'b0}}};
+          msb_o = m + 1'b1;
+        end else begin
+          sig_o = inc[OutBits-1:0];
+          msb_o = m;
+        end
       end
     end
   end else if (InBits == OutBits) begin : gen_same

@@ -113,26 +113,39 @@ module fxr_interp #(
   /* verilator lint_off UNUSEDSIGNAL */  // the products' top bits (the sums are taken modulo 2^IPB)
   logic signed [IPB+PB:0] p_xprod [NP], p_yprod [NP];
   /* verilator lint_on UNUSEDSIGNAL */
+  // The combinational blocks below are evaluated only while their result is read (here: a span
+  // at the input; it is read in the accepting clock only) and are 0 otherwise, so that the
+  // simulator skips an idle interpolator's wide arithmetic (docs/rtl.md, "Co-simulation speed").
   always_comb begin
     for (int p = 0; p < NP; p++) begin
-      // block p at [(NP − 1 − p)·VB +: VB], fields from its top
-      pc[p]   = $signed(ctx[(NP - p) * VB - 1 -: IPB]);
-      pdx[p]  = $signed(ctx[(NP - p) * VB - 1 - IPB -: IPB]);
-      pdy[p]  = $signed(ctx[(NP - p) * VB - 1 - 2 * IPB -: IPB]);
-      pexp[p] = ctx[(NP - 1 - p) * VB +: EB];
-      if (Attr) begin
-        pi0[p] = $signed(ctx[(NP - 1 - p) * VB + EB + PB +: PB]);
-        pj0[p] = $signed(ctx[(NP - 1 - p) * VB + EB +: PB]);
-      end else begin
-        pi0[p] = '0;
-        pj0[p] = '0;
+      pc[p] = '0;
+      pdx[p] = '0;
+      pdy[p] = '0;
+      pexp[p] = '0;
+      pi0[p] = '0;
+      pj0[p] = '0;
+      p_xoff[p] = '0;
+      p_yoff[p] = '0;
+      p_xprod[p] = '0;
+      p_yprod[p] = '0;
+      p_start[p] = '0;
+      if (in_valid_i) begin
+        // block p at [(NP − 1 − p)·VB +: VB], fields from its top
+        pc[p]   = $signed(ctx[(NP - p) * VB - 1 -: IPB]);
+        pdx[p]  = $signed(ctx[(NP - p) * VB - 1 - IPB -: IPB]);
+        pdy[p]  = $signed(ctx[(NP - p) * VB - 1 - 2 * IPB -: IPB]);
+        pexp[p] = ctx[(NP - 1 - p) * VB +: EB];
+        if (Attr) begin
+          pi0[p] = $signed(ctx[(NP - 1 - p) * VB + EB + PB +: PB]);
+          pj0[p] = $signed(ctx[(NP - 1 - p) * VB + EB +: PB]);
+        end
+        // products at their own width ((PB + 1) × IPB signed), then the low IPB bits
+        p_xoff[p]  = (PB + 1)'(in_x0) - (PB + 1)'(pi0[p]);
+        p_yoff[p]  = (PB + 1)'(in_y) - (PB + 1)'(pj0[p]);
+        p_xprod[p] = p_xoff[p] * pdx[p];
+        p_yprod[p] = p_yoff[p] * pdy[p];
+        p_start[p] = pc[p] + p_xprod[p][IPB-1:0] + p_yprod[p][IPB-1:0];
       end
-      // products at their own width ((PB + 1) × IPB signed), then the low IPB bits
-      p_xoff[p]  = (PB + 1)'(in_x0) - (PB + 1)'(pi0[p]);
-      p_yoff[p]  = (PB + 1)'(in_y) - (PB + 1)'(pj0[p]);
-      p_xprod[p] = p_xoff[p] * pdx[p];
-      p_yprod[p] = p_yoff[p] * pdy[p];
-      p_start[p] = pc[p] + p_xprod[p][IPB-1:0] + p_yprod[p][IPB-1:0];
     end
   end
 
@@ -145,22 +158,32 @@ module fxr_interp #(
   /* verilator lint_on UNUSEDSIGNAL */
   logic signed [ZPB-1:0] z_start;
   always_comb begin
-    zc   = $signed(ctx[ZBase + ZVB - 1 -: ZPB]);
-    zdx  = $signed(ctx[ZBase + ZVB - 1 - ZPB -: ZPB]);
-    zdy  = $signed(ctx[ZBase + ZVB - 1 - 2 * ZPB -: ZPB]);
-    zden = ctx[NP * VB +: ZDB];
-    if (Attr) begin
-      zi0 = $signed(ctx[ZBase + PB +: PB]);
-      zj0 = $signed(ctx[ZBase +: PB]);
-    end else begin
-      zi0 = '0;
-      zj0 = '0;
+    zc      = '0;
+    zdx     = '0;
+    zdy     = '0;
+    zden    = '0;
+    zi0     = '0;
+    zj0     = '0;
+    z_xoff  = '0;
+    z_yoff  = '0;
+    z_xprod = '0;
+    z_yprod = '0;
+    z_start = '0;
+    if (in_valid_i) begin
+      zc   = $signed(ctx[ZBase + ZVB - 1 -: ZPB]);
+      zdx  = $signed(ctx[ZBase + ZVB - 1 - ZPB -: ZPB]);
+      zdy  = $signed(ctx[ZBase + ZVB - 1 - 2 * ZPB -: ZPB]);
+      zden = ctx[NP * VB +: ZDB];
+      if (Attr) begin
+        zi0 = $signed(ctx[ZBase + PB +: PB]);
+        zj0 = $signed(ctx[ZBase +: PB]);
+      end
+      z_xoff  = (PB + 1)'(in_x0) - (PB + 1)'(zi0);
+      z_yoff  = (PB + 1)'(in_y) - (PB + 1)'(zj0);
+      z_xprod = z_xoff * zdx;
+      z_yprod = z_yoff * zdy;
+      z_start = zc + z_xprod[ZPB-1:0] + z_yprod[ZPB-1:0];
     end
-    z_xoff  = (PB + 1)'(in_x0) - (PB + 1)'(zi0);
-    z_yoff  = (PB + 1)'(in_y) - (PB + 1)'(zj0);
-    z_xprod = z_xoff * zdx;
-    z_yprod = z_yoff * zdy;
-    z_start = zc + z_xprod[ZPB-1:0] + z_yprod[ZPB-1:0];
   end
 
   // ---- front: the span start ---------------------------------------------------------------
@@ -176,56 +199,72 @@ module fxr_interp #(
   logic [QB-1:0]         f_rem_q [2], f_dsh_q [2], f_quo_q [2];
   logic [CntB-1:0]       f_cnt_q [2];
 
-  // Normalisation: shift the divisor to the dividend's leading one.
+  // Normalisation: shift the divisor to the dividend's leading one (read in FrNorm only).
   logic [CntB-1:0] nz_msb [2];
   logic [CntB-1:0] nd_msb;
   logic            n_any [2];
   always_comb begin
     nd_msb = '0;
-    for (int i = 0; i < ZDB; i++)
-      if (f_den_q[i]) nd_msb = CntB'(i);
     for (int d = 0; d < 2; d++) begin
       nz_msb[d] = '0;
       n_any[d]  = 1'b0;
-      for (int i = 0; i < QB; i++)
-        if (f_rem_q[d][i]) begin
-          nz_msb[d] = CntB'(i);
-          n_any[d]  = 1'b1;
-        end
+    end
+    if (front_q == FrNorm) begin
+      for (int i = 0; i < ZDB; i++)
+        if (f_den_q[i]) nd_msb = CntB'(i);
+      for (int d = 0; d < 2; d++) begin
+        for (int i = 0; i < QB; i++)
+          if (f_rem_q[d][i]) begin
+            nz_msb[d] = CntB'(i);
+            n_any[d]  = 1'b1;
+          end
+      end
     end
   end
 
-  // Restoring steps: DivStepsPerClock per clock while quotient bits are left.
+  // Restoring steps: DivStepsPerClock per clock while quotient bits are left (read in FrDiv only).
   logic [QB-1:0]   s_rem [2], s_dsh [2], s_quo [2];
   logic [CntB-1:0] s_cnt [2];
   logic            div_done;
   always_comb begin
     for (int d = 0; d < 2; d++) begin
-      s_rem[d] = f_rem_q[d];
-      s_dsh[d] = f_dsh_q[d];
-      s_quo[d] = f_quo_q[d];
-      s_cnt[d] = f_cnt_q[d];
-      for (int k = 0; k < DivStepsPerClock; k++)
-        if (s_cnt[d] != '0) begin
-          if (s_rem[d] >= s_dsh[d]) begin
-            s_rem[d] = s_rem[d] - s_dsh[d];
-            s_quo[d] = {s_quo[d][QB-2:0], 1'b1};
-          end else begin
-            s_quo[d] = {s_quo[d][QB-2:0], 1'b0};
+      s_rem[d] = '0;
+      s_dsh[d] = '0;
+      s_quo[d] = '0;
+      s_cnt[d] = '0;
+    end
+    if (front_q == FrDiv) begin
+      for (int d = 0; d < 2; d++) begin
+        s_rem[d] = f_rem_q[d];
+        s_dsh[d] = f_dsh_q[d];
+        s_quo[d] = f_quo_q[d];
+        s_cnt[d] = f_cnt_q[d];
+        for (int k = 0; k < DivStepsPerClock; k++)
+          if (s_cnt[d] != '0) begin
+            if (s_rem[d] >= s_dsh[d]) begin
+              s_rem[d] = s_rem[d] - s_dsh[d];
+              s_quo[d] = {s_quo[d][QB-2:0], 1'b1};
+            end else begin
+              s_quo[d] = {s_quo[d][QB-2:0], 1'b0};
+            end
+            s_dsh[d] = s_dsh[d] >> 1;
+            s_cnt[d] = s_cnt[d] - CntB'(1);
           end
-          s_dsh[d] = s_dsh[d] >> 1;
-          s_cnt[d] = s_cnt[d] - CntB'(1);
-        end
+      end
     end
     div_done = s_cnt[0] == '0 && s_cnt[1] == '0;  // the last quotient bits are taken this clock
   end
 
-  // Sign fix of floor division: q = −|q| (exact) or −|q| − 1 with r = den − rem.
+  // Sign fix of floor division: q = −|q| (exact) or −|q| − 1 with r = den − rem (read at the
+  // handoff, in FrDone, only).
   logic signed [QB-1:0] fx_q [2];
   logic [ZDB-1:0]       fx_r [2];
   always_comb begin
     for (int d = 0; d < 2; d++) begin
-      if (f_neg_q[d] && f_rem_q[d] != '0) begin
+      if (front_q != FrDone) begin
+        fx_q[d] = '0;
+        fx_r[d] = '0;
+      end else if (f_neg_q[d] && f_rem_q[d] != '0) begin
         fx_q[d] = -$signed(f_quo_q[d]) - QB'(1);
         fx_r[d] = f_den_q - f_rem_q[d][ZDB-1:0];
       end else begin
@@ -262,34 +301,46 @@ module fxr_interp #(
   logic signed [QB:0]   code_full;
   logic [Db-1:0]        code;
   always_comb begin
-    two_r     = {b_r_q, 1'b0};
-    round_up  = two_r > RB'(b_den_q) || (two_r == RB'(b_den_q) && b_q_q[0]);
-    code_full = $signed({b_q_q[QB-1], b_q_q}) + (QB + 1)'(round_up);
-    if (code_full < 0) code = '0;
-    else if (code_full > (QB + 1)'(MaxCode)) code = Db'(MaxCode);
-    else code = code_full[Db-1:0];
+    two_r     = '0;
+    round_up  = 1'b0;
+    code_full = '0;
+    code      = '0;
+    if (b_valid_q) begin
+      two_r     = {b_r_q, 1'b0};
+      round_up  = two_r > RB'(b_den_q) || (two_r == RB'(b_den_q) && b_q_q[0]);
+      code_full = $signed({b_q_q[QB-1], b_q_q}) + (QB + 1)'(round_up);
+      if (code_full < 0) code = '0;
+      else if (code_full > (QB + 1)'(MaxCode)) code = Db'(MaxCode);
+      else code = code_full[Db-1:0];
+    end
   end
 
   // The step along x: r += dr, q += dq (+ 1 when r reaches den).
   logic [RB-1:0]        st_r;
   logic                 st_carry;
   always_comb begin
-    st_r     = RB'(b_r_q) + RB'(b_dr_q);
-    st_carry = st_r >= RB'(b_den_q);
-    if (st_carry) st_r = st_r - RB'(b_den_q);
+    st_r     = '0;
+    st_carry = 1'b0;
+    if (b_valid_q) begin
+      st_r     = RB'(b_r_q) + RB'(b_dr_q);
+      st_carry = st_r >= RB'(b_den_q);
+      if (st_carry) st_r = st_r - RB'(b_den_q);
+    end
   end
 
   // Output record.
   logic [PSB-1:0] out_flat;
   always_comb begin
     out_flat = '0;
-    out_flat[PSB-1 -: PrimBits]                  = b_prim_q;
-    out_flat[PSB-1-PrimBits -: PB]               = b_x_q;
-    out_flat[PSB-1-PrimBits-PB -: PB]            = b_y_q;
-    out_flat[PSB-1-PrimBits-2*PB -: Db]          = code;
-    for (int p = 0; p < NP; p++) begin
-      out_flat[(NP - p) * SB - 1 -: IPB] = b_p_q[p];
-      out_flat[(NP - 1 - p) * SB +: EB]  = b_pexp_q[p];
+    if (b_valid_q) begin
+      out_flat[PSB-1 -: PrimBits]                  = b_prim_q;
+      out_flat[PSB-1-PrimBits -: PB]               = b_x_q;
+      out_flat[PSB-1-PrimBits-PB -: PB]            = b_y_q;
+      out_flat[PSB-1-PrimBits-2*PB -: Db]          = code;
+      for (int p = 0; p < NP; p++) begin
+        out_flat[(NP - p) * SB - 1 -: IPB] = b_p_q[p];
+        out_flat[(NP - 1 - p) * SB +: EB]  = b_pexp_q[p];
+      end
     end
   end
   assign out_o       = out_flat;

@@ -15,6 +15,7 @@ module fxr_setup_align #(
   parameter int Bits    = fxr_config_pkg::RasterInterpBlockBits,
   localparam int QB     = Bits + 2
 ) (
+  input  logic                 en_i,   // low: q_o, exp_o = 0 (not read; the simulator skips the alignment)
   input  logic [2:0]           neg_i,
   input  logic [3*SigBits-1:0] sig_i,
   input  logic [3*ExpBits-1:0] exp_i,
@@ -38,27 +39,43 @@ module fxr_setup_align #(
   logic                   rnd, sticky, up;
   logic [QB-1:0]          mag;
   always_comb begin
-    for (int k = 0; k < 3; k++) begin
-      nz[k] = |sig_i[k*SigBits +: SigBits];
-      e[k]  = DB'($signed(exp_i[k*ExpBits +: ExpBits]));
-    end
-    emax  = '0;
-    first = 1'b1;
-    for (int k = 0; k < 3; k++) begin
-      if (nz[k] && (first || e[k] > emax)) emax = e[k];
-      if (nz[k]) first = 1'b0;
-    end
-    exp_o = |nz ? ExpBits'(emax + DB'(SigBits) - DB'(Bits)) : '0;
-    for (int k = 0; k < 3; k++) begin
-      d = emax - e[k] + DB'(RX);
-      r = (d > DB'(Cap)) ? SB'(Cap) : SB'(d);
-      ext = {W'(sig_i[k*SigBits +: SigBits]) << L, Cap'(0)} >> r;
-      m = ext[Cap +: W];
-      rnd = ext[Cap-1];
-      sticky = |ext[Cap-2:0];
-      up  = rnd & (sticky | m[0]);
-      mag = QB'(m) + QB'(up);
-      q_o[k*QB +: QB] = !nz[k] ? '0 : (neg_i[k] ? -mag : mag);
+    nz = '0;
+    first = 1'b0;
+    for (int k = 0; k < 3; k++) e[k] = '0;
+    emax = '0;
+    d = '0;
+    r = '0;
+    ext = '0;
+    m = '0;
+    rnd = 1'b0;
+    sticky = 1'b0;
+    up = 1'b0;
+    mag = '0;
+    exp_o = '0;
+    q_o = '0;
+    if (en_i) begin
+      for (int k = 0; k < 3; k++) begin
+        nz[k] = |sig_i[k*SigBits +: SigBits];
+        e[k]  = DB'($signed(exp_i[k*ExpBits +: ExpBits]));
+      end
+      emax  = '0;
+      first = 1'b1;
+      for (int k = 0; k < 3; k++) begin
+        if (nz[k] && (first || e[k] > emax)) emax = e[k];
+        if (nz[k]) first = 1'b0;
+      end
+      exp_o = |nz ? ExpBits'(emax + DB'(SigBits) - DB'(Bits)) : '0;
+      for (int k = 0; k < 3; k++) begin
+        d = emax - e[k] + DB'(RX);
+        r = (d > DB'(Cap)) ? SB'(Cap) : SB'(d);
+        ext = {W'(sig_i[k*SigBits +: SigBits]) << L, Cap'(0)} >> r;
+        m = ext[Cap +: W];
+        rnd = ext[Cap-1];
+        sticky = |ext[Cap-2:0];
+        up  = rnd & (sticky | m[0]);
+        mag = QB'(m) + QB'(up);
+        q_o[k*QB +: QB] = !nz[k] ? '0 : (neg_i[k] ? -mag : mag);
+      end
     end
   end
 endmodule

@@ -38,6 +38,7 @@ module fxr_setup_attr #(
 ) (
   input  logic                clk_i,
   input  logic                en_i,
+  input  logic [3:0]          v_i,        // v_i[s]: stage s's input is valid (else skipped)
   input  logic [3*AXB-1:0]    ax_i,       // signed, AttrSubpixelBits fraction bits
   input  logic [3*AXB-1:0]    ay_i,
   input  logic [PB-1:0]       x0_i,       // candidate rectangle (signed)
@@ -70,26 +71,35 @@ module fxr_setup_attr #(
   logic [DRB-1:0]       drop_d;
   int                   msb;
   always_comb begin
-    ox  = MB'($signed(ax_i[0 +: AXB]));
-    oy  = MB'($signed(ay_i[0 +: AXB]));
-    orm = MB'(1) << A;
-    for (int k = 1; k < 3; k++) begin
-      rel = MB'($signed(ax_i[k*AXB +: AXB])) - ox;
-      orm |= rel < 0 ? MB'(-rel) : MB'(rel);
-      rel = MB'($signed(ay_i[k*AXB +: AXB])) - oy;
-      orm |= rel < 0 ? MB'(-rel) : MB'(rel);
-    end
-    cnr = (MB'($signed(x0_i)) <<< A) + (MB'(1) <<< (A - 1)) - ox;
-    orm |= cnr < 0 ? MB'(-cnr) : MB'(cnr);
-    cnr = (MB'($signed(x1_i)) <<< A) + (MB'(1) <<< (A - 1)) - ox;
-    orm |= cnr < 0 ? MB'(-cnr) : MB'(cnr);
-    cnr = (MB'($signed(y0_i)) <<< A) + (MB'(1) <<< (A - 1)) - oy;
-    orm |= cnr < 0 ? MB'(-cnr) : MB'(cnr);
-    cnr = (MB'($signed(y1_i)) <<< A) + (MB'(1) <<< (A - 1)) - oy;
-    orm |= cnr < 0 ? MB'(-cnr) : MB'(cnr);
+    ox = '0;
+    oy = '0;
+    rel = '0;
+    cnr = '0;
+    orm = '0;
+    drop_d = '0;
     msb = 0;
-    for (int b = 0; b < MB; b++) if (orm[b]) msb = b;
-    drop_d = (msb + 3 > W) ? DRB'(msb + 3 - W) : '0;
+    if (v_i[0]) begin
+      ox  = MB'($signed(ax_i[0 +: AXB]));
+      oy  = MB'($signed(ay_i[0 +: AXB]));
+      orm = MB'(1) << A;
+      for (int k = 1; k < 3; k++) begin
+        rel = MB'($signed(ax_i[k*AXB +: AXB])) - ox;
+        orm |= rel < 0 ? MB'(-rel) : MB'(rel);
+        rel = MB'($signed(ay_i[k*AXB +: AXB])) - oy;
+        orm |= rel < 0 ? MB'(-rel) : MB'(rel);
+      end
+      cnr = (MB'($signed(x0_i)) <<< A) + (MB'(1) <<< (A - 1)) - ox;
+      orm |= cnr < 0 ? MB'(-cnr) : MB'(cnr);
+      cnr = (MB'($signed(x1_i)) <<< A) + (MB'(1) <<< (A - 1)) - ox;
+      orm |= cnr < 0 ? MB'(-cnr) : MB'(cnr);
+      cnr = (MB'($signed(y0_i)) <<< A) + (MB'(1) <<< (A - 1)) - oy;
+      orm |= cnr < 0 ? MB'(-cnr) : MB'(cnr);
+      cnr = (MB'($signed(y1_i)) <<< A) + (MB'(1) <<< (A - 1)) - oy;
+      orm |= cnr < 0 ? MB'(-cnr) : MB'(cnr);
+      msb = 0;
+      for (int b = 0; b < MB; b++) if (orm[b]) msb = b;
+      drop_d = (msb + 3 > W) ? DRB'(msb + 3 - W) : '0;
+    end
   end
 
   logic [3*AXB-1:0] a1_ax_q, a1_ay_q;
@@ -98,7 +108,7 @@ module fxr_setup_attr #(
   logic [3*ECB-1:0] a1_ea_q, a1_eb_q;
   logic [3*EVB-1:0] a1_ec_q;
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && v_i[0]) begin
       a1_ax_q   <= ax_i;
       a1_ay_q   <= ay_i;
       a1_drop_q <= drop_d;
@@ -126,14 +136,23 @@ module fxr_setup_attr #(
   endfunction
   always_comb begin
     for (int k = 0; k < 3; k++) begin
-      px[k] = rne_drop($signed(a1_ax_q[k*AXB +: AXB]), a1_drop_q);
-      py[k] = rne_drop($signed(a1_ay_q[k*AXB +: AXB]), a1_drop_q);
+      px[k] = '0;
+      py[k] = '0;
     end
-    for (int k = 1; k < 3; k++) begin
-      wide = (AXB+1)'(px[k]) - (AXB+1)'(px[0]);
-      rx_d[(k-1)*RW +: RW] = RW'(wide);
-      wide = (AXB+1)'(py[k]) - (AXB+1)'(py[0]);
-      ry_d[(k-1)*RW +: RW] = RW'(wide);
+    wide = '0;
+    rx_d = '0;
+    ry_d = '0;
+    if (v_i[1]) begin
+      for (int k = 0; k < 3; k++) begin
+        px[k] = rne_drop($signed(a1_ax_q[k*AXB +: AXB]), a1_drop_q);
+        py[k] = rne_drop($signed(a1_ay_q[k*AXB +: AXB]), a1_drop_q);
+      end
+      for (int k = 1; k < 3; k++) begin
+        wide = (AXB+1)'(px[k]) - (AXB+1)'(px[0]);
+        rx_d[(k-1)*RW +: RW] = RW'(wide);
+        wide = (AXB+1)'(py[k]) - (AXB+1)'(py[0]);
+        ry_d[(k-1)*RW +: RW] = RW'(wide);
+      end
     end
   end
 
@@ -144,7 +163,7 @@ module fxr_setup_attr #(
   logic [3*ECB-1:0] a2_ea_q, a2_eb_q;
   logic [3*EVB-1:0] a2_ec_q;
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && v_i[1]) begin
       a2_rx_q <= rx_d;
       a2_ry_q <= ry_d;
       a2_ox_q <= px[0];
@@ -167,21 +186,33 @@ module fxr_setup_attr #(
   /* verilator lint_on UNUSEDSIGNAL */
   logic [XW-1:0]         ax0_d, ay0_d;
   always_comb begin
-    vx[0] = '0;
-    vy[0] = '0;
-    for (int k = 1; k < 3; k++) begin
-      vx[k] = $signed(a2_rx_q[(k-1)*RW +: RW]);
-      vy[k] = $signed(a2_ry_q[(k-1)*RW +: RW]);
-    end
     for (int k = 0; k < 3; k++) begin
-      ta_d[k*AB +: AB] = AB'(vy[(k + 1) % 3]) - AB'(vy[(k + 2) % 3]);
-      tb_d[k*AB +: AB] = AB'(vx[(k + 2) % 3]) - AB'(vx[(k + 1) % 3]);
+      vx[k] = '0;
+      vy[k] = '0;
     end
-    c0_d = PW'(vx[1]) * PW'(vy[2]) - PW'(vx[2]) * PW'(vy[1]);
-    anc = ((AXB+3)'($signed(a2_x0_q)) <<< a2_f_q) + ((AXB+3)'(1) <<< (a2_f_q - SHB'(1))) - (AXB+3)'($signed(a2_ox_q));
-    ax0_d = XW'(anc);
-    anc = ((AXB+3)'($signed(a2_y0_q)) <<< a2_f_q) + ((AXB+3)'(1) <<< (a2_f_q - SHB'(1))) - (AXB+3)'($signed(a2_oy_q));
-    ay0_d = XW'(anc);
+    ta_d = '0;
+    tb_d = '0;
+    c0_d = '0;
+    anc = '0;
+    ax0_d = '0;
+    ay0_d = '0;
+    if (v_i[2]) begin
+      vx[0] = '0;
+      vy[0] = '0;
+      for (int k = 1; k < 3; k++) begin
+        vx[k] = $signed(a2_rx_q[(k-1)*RW +: RW]);
+        vy[k] = $signed(a2_ry_q[(k-1)*RW +: RW]);
+      end
+      for (int k = 0; k < 3; k++) begin
+        ta_d[k*AB +: AB] = AB'(vy[(k + 1) % 3]) - AB'(vy[(k + 2) % 3]);
+        tb_d[k*AB +: AB] = AB'(vx[(k + 2) % 3]) - AB'(vx[(k + 1) % 3]);
+      end
+      c0_d = PW'(vx[1]) * PW'(vy[2]) - PW'(vx[2]) * PW'(vy[1]);
+      anc = ((AXB+3)'($signed(a2_x0_q)) <<< a2_f_q) + ((AXB+3)'(1) <<< (a2_f_q - SHB'(1))) - (AXB+3)'($signed(a2_ox_q));
+      ax0_d = XW'(anc);
+      anc = ((AXB+3)'($signed(a2_y0_q)) <<< a2_f_q) + ((AXB+3)'(1) <<< (a2_f_q - SHB'(1))) - (AXB+3)'($signed(a2_oy_q));
+      ay0_d = XW'(anc);
+    end
   end
 
   logic [3*AB-1:0]  a3_a_q, a3_b_q;
@@ -192,7 +223,7 @@ module fxr_setup_attr #(
   logic [3*ECB-1:0] a3_ea_q, a3_eb_q;
   logic [3*EVB-1:0] a3_ec_q;
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && v_i[2]) begin
       a3_a_q   <= ta_d;
       a3_b_q   <= tb_d;
       a3_c0_q  <= c0_d;
@@ -217,39 +248,43 @@ module fxr_setup_attr #(
   logic [3*AB-1:0]      a_d, b_d;
   logic [3*CWB-1:0]     c_d;
   always_comb begin
-    na  = '0;
-    nb  = '0;
-    nc  = '0;
-    cc  = '0;
+    na = '0;
+    nb = '0;
+    nc = '0;
+    cc = '0;
     a_d = '0;
     b_d = '0;
     c_d = '0;
-    use_attr = Attr && a3_c0_q != '0;
-    flip     = a3_c0_q[PW-1];
-    for (int k = 0; k < 3; k++) begin
-      if (use_attr) begin
-        na = $signed(a3_a_q[k*AB +: AB]);
-        nb = $signed(a3_b_q[k*AB +: AB]);
-        nc = (k == 0) ? $signed(a3_c0_q) : '0;
-        if (flip) begin
-          na = -na;
-          nb = -nb;
-          nc = -nc;
+    use_attr = 1'b0;
+    flip = 1'b0;
+    if (v_i[3]) begin
+      use_attr = Attr && a3_c0_q != '0;
+      flip     = a3_c0_q[PW-1];
+      for (int k = 0; k < 3; k++) begin
+        if (use_attr) begin
+          na = $signed(a3_a_q[k*AB +: AB]);
+          nb = $signed(a3_b_q[k*AB +: AB]);
+          nc = (k == 0) ? $signed(a3_c0_q) : '0;
+          if (flip) begin
+            na = -na;
+            nb = -nb;
+            nc = -nc;
+          end
+          cc = PW'(na) * PW'($signed(a3_ax0_q)) + PW'(nb) * PW'($signed(a3_ay0_q)) + nc;
+        end else begin
+          na = AB'($signed(a3_ea_q[k*ECB +: ECB]));
+          nb = AB'($signed(a3_eb_q[k*ECB +: ECB]));
+          cc = ((PW'(na) + PW'(nb)) <<< (G - 1)) + PW'($signed(a3_ec_q[k*EVB +: EVB]));
         end
-        cc = PW'(na) * PW'($signed(a3_ax0_q)) + PW'(nb) * PW'($signed(a3_ay0_q)) + nc;
-      end else begin
-        na = AB'($signed(a3_ea_q[k*ECB +: ECB]));
-        nb = AB'($signed(a3_eb_q[k*ECB +: ECB]));
-        cc = ((PW'(na) + PW'(nb)) <<< (G - 1)) + PW'($signed(a3_ec_q[k*EVB +: EVB]));
+        a_d[k*AB +: AB]    = na;
+        b_d[k*AB +: AB]    = nb;
+        c_d[k*CWB +: CWB]  = CWB'(cc);
       end
-      a_d[k*AB +: AB]    = na;
-      b_d[k*AB +: AB]    = nb;
-      c_d[k*CWB +: CWB]  = CWB'(cc);
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && v_i[3]) begin
       attr_o  <= use_attr;
       a_o     <= a_d;
       b_o     <= b_d;

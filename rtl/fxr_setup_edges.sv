@@ -30,6 +30,7 @@ module fxr_setup_edges #(
 ) (
   input  logic                     clk_i,
   input  logic                     en_i,
+  input  logic [2:0]               v_i,           // v_i[s]: stage s's input is valid (else skipped)
   input  logic [3*XB-1:0]       x_i,           // signed, subpixel units
   input  logic [3*XB-1:0]       y_i,
   input  logic [3*ZB-1:0]       z_i,           // unsigned, ZFracBits fraction bits
@@ -84,50 +85,75 @@ module fxr_setup_edges #(
   logic                  scissor;
   always_comb begin
     for (int k = 0; k < 3; k++) begin
-      gx[k] = CB'($signed(x_i[k*XB +: XB])) <<< Up;
-      gy[k] = CB'($signed(y_i[k*XB +: XB])) <<< Up;
+      gx[k] = '0;
+      gy[k] = '0;
     end
     range_d = 1'b0;
-    for (int k = 0; k < 3; k++) range_d |= z_i[k*ZB +: ZB] > ZB'(1) << ZFracBits;  // z/w > 1
-    for (int k = 0; k < 3; k++) begin
-      a_d[k*ECB +: ECB] = ECB'(gy[(k + 1) % 3]) - ECB'(gy[(k + 2) % 3]);
-      b_d[k*ECB +: ECB] = ECB'(gx[(k + 2) % 3]) - ECB'(gx[(k + 1) % 3]);
-      p_d[k*(2*CB) +: 2*CB] = (2*CB)'(gx[(k + 1) % 3] * gy[(k + 2) % 3]);
-      q_d[k*(2*CB) +: 2*CB] = (2*CB)'(gx[(k + 2) % 3] * gy[(k + 1) % 3]);
-    end
-    xmin = gx[0];
-    xmax = gx[0];
-    ymin = gy[0];
-    ymax = gy[0];
-    for (int k = 1; k < 3; k++) begin
-      if (gx[k] < xmin) xmin = gx[k];
-      if (gx[k] > xmax) xmax = gx[k];
-      if (gy[k] < ymin) ymin = gy[k];
-      if (gy[k] > ymax) ymax = gy[k];
-    end
-    // draw_rect: viewport ∩ scissor (both sizes non-negative), then the window range.
-    vx = RB'($signed(viewport_x_i));
-    vy = RB'($signed(viewport_y_i));
-    sx = RB'($signed(scissor_x_i));
-    sy = RB'($signed(scissor_y_i));
+    a_d = '0;
+    b_d = '0;
+    p_d = '0;
+    q_d = '0;
+    xmin = '0;
+    xmax = '0;
+    ymin = '0;
+    ymax = '0;
+    vx = '0;
+    vy = '0;
+    sx = '0;
+    sy = '0;
     t = '0;
-    scissor = !scissor_w_i[WindowIntBits] && !scissor_h_i[WindowIntBits];
-    rx0_d = vx;
-    ry0_d = vy;
-    rx1_d = vx + RB'($signed(viewport_w_i)) - RB'(1);
-    ry1_d = vy + RB'($signed(viewport_h_i)) - RB'(1);
-    if (scissor) begin
-      if (sx > rx0_d) rx0_d = sx;
-      if (sy > ry0_d) ry0_d = sy;
-      t = sx + RB'($signed(scissor_w_i)) - RB'(1);
-      if (t < rx1_d) rx1_d = t;
-      t = sy + RB'($signed(scissor_h_i)) - RB'(1);
-      if (t < ry1_d) ry1_d = t;
+    scissor = 1'b0;
+    rx0_d = '0;
+    ry0_d = '0;
+    rx1_d = '0;
+    ry1_d = '0;
+    if (v_i[0]) begin
+      for (int k = 0; k < 3; k++) begin
+        gx[k] = CB'($signed(x_i[k*XB +: XB])) <<< Up;
+        gy[k] = CB'($signed(y_i[k*XB +: XB])) <<< Up;
+      end
+      range_d = 1'b0;
+      for (int k = 0; k < 3; k++) range_d |= z_i[k*ZB +: ZB] > ZB'(1) << ZFracBits;  // z/w > 1
+      for (int k = 0; k < 3; k++) begin
+        a_d[k*ECB +: ECB] = ECB'(gy[(k + 1) % 3]) - ECB'(gy[(k + 2) % 3]);
+        b_d[k*ECB +: ECB] = ECB'(gx[(k + 2) % 3]) - ECB'(gx[(k + 1) % 3]);
+        p_d[k*(2*CB) +: 2*CB] = (2*CB)'(gx[(k + 1) % 3] * gy[(k + 2) % 3]);
+        q_d[k*(2*CB) +: 2*CB] = (2*CB)'(gx[(k + 2) % 3] * gy[(k + 1) % 3]);
+      end
+      xmin = gx[0];
+      xmax = gx[0];
+      ymin = gy[0];
+      ymax = gy[0];
+      for (int k = 1; k < 3; k++) begin
+        if (gx[k] < xmin) xmin = gx[k];
+        if (gx[k] > xmax) xmax = gx[k];
+        if (gy[k] < ymin) ymin = gy[k];
+        if (gy[k] > ymax) ymax = gy[k];
+      end
+      // draw_rect: viewport ∩ scissor (both sizes non-negative), then the window range.
+      vx = RB'($signed(viewport_x_i));
+      vy = RB'($signed(viewport_y_i));
+      sx = RB'($signed(scissor_x_i));
+      sy = RB'($signed(scissor_y_i));
+      t = '0;
+      scissor = !scissor_w_i[WindowIntBits] && !scissor_h_i[WindowIntBits];
+      rx0_d = vx;
+      ry0_d = vy;
+      rx1_d = vx + RB'($signed(viewport_w_i)) - RB'(1);
+      ry1_d = vy + RB'($signed(viewport_h_i)) - RB'(1);
+      if (scissor) begin
+        if (sx > rx0_d) rx0_d = sx;
+        if (sy > ry0_d) ry0_d = sy;
+        t = sx + RB'($signed(scissor_w_i)) - RB'(1);
+        if (t < rx1_d) rx1_d = t;
+        t = sy + RB'($signed(scissor_h_i)) - RB'(1);
+        if (t < ry1_d) ry1_d = t;
+      end
+      if (rx0_d < -(RB'(1) <<< (WindowIntBits - 1))) rx0_d = -(RB'(1) <<< (WindowIntBits - 1));
+      if (ry0_d < -(RB'(1) <<< (WindowIntBits - 1))) ry0_d = -(RB'(1) <<< (WindowIntBits - 1));
+      if (rx1_d > (RB'(1) <<< (WindowIntBits - 1)) - RB'(1)) rx1_d = (RB'(1) <<< (WindowIntBits - 1)) - RB'(1);
+      if (ry1_d > (RB'(1) <<< (WindowIntBits - 1)) - RB'(1)) ry1_d = (RB'(1) <<< (WindowIntBits - 1)) - RB'(1);
     end
-    if (rx0_d < -(RB'(1) <<< (WindowIntBits - 1))) rx0_d = -(RB'(1) <<< (WindowIntBits - 1));
-    if (ry0_d < -(RB'(1) <<< (WindowIntBits - 1))) ry0_d = -(RB'(1) <<< (WindowIntBits - 1));
-    if (rx1_d > (RB'(1) <<< (WindowIntBits - 1)) - RB'(1)) rx1_d = (RB'(1) <<< (WindowIntBits - 1)) - RB'(1);
-    if (ry1_d > (RB'(1) <<< (WindowIntBits - 1)) - RB'(1)) ry1_d = (RB'(1) <<< (WindowIntBits - 1)) - RB'(1);
   end
 
   logic [3*ECB-1:0]  s1_a_q, s1_b_q;
@@ -137,7 +163,7 @@ module fxr_setup_edges #(
   logic                 s1_range_q, s1_front_ccw_q;
   logic [1:0]           s1_cull_q;
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && v_i[0]) begin
       s1_a_q         <= a_d;
       s1_b_q         <= b_d;
       s1_p_q         <= p_d;
@@ -162,24 +188,35 @@ module fxr_setup_edges #(
   logic signed [RB-1:0]  bx0_d, bx1_d, by0_d, by1_d;
   logic signed [CB+1:0]  lo_x, lo_y, hi_x, hi_y;
   always_comb begin
+    c_d = '0;
     area2_d = '0;
-    for (int k = 0; k < 3; k++) begin
-      c_d[k*EVB +: EVB]  = EVB'($signed(s1_p_q[k*(2*CB) +: 2*CB])) - EVB'($signed(s1_q_q[k*(2*CB) +: 2*CB]));
-      area2_d = area2_d + $signed(c_d[k*EVB +: EVB]);
+    lo_x = '0;
+    lo_y = '0;
+    hi_x = '0;
+    hi_y = '0;
+    bx0_d = '0;
+    bx1_d = '0;
+    by0_d = '0;
+    by1_d = '0;
+    if (v_i[1]) begin
+      for (int k = 0; k < 3; k++) begin
+        c_d[k*EVB +: EVB]  = EVB'($signed(s1_p_q[k*(2*CB) +: 2*CB])) - EVB'($signed(s1_q_q[k*(2*CB) +: 2*CB]));
+        area2_d = area2_d + $signed(c_d[k*EVB +: EVB]);
+      end
+      // ceil((min - h) / 2^G) = floor((min - h + 2^G - 1) / 2^G); floor((max - h) / 2^G)
+      lo_x = (CB+2)'($signed(s1_xmin_q)) + (CB+2)'(HalfPx - 1);
+      lo_y = (CB+2)'($signed(s1_ymin_q)) + (CB+2)'(HalfPx - 1);
+      hi_x = (CB+2)'($signed(s1_xmax_q)) - (CB+2)'(HalfPx);
+      hi_y = (CB+2)'($signed(s1_ymax_q)) - (CB+2)'(HalfPx);
+      bx0_d = RB'(lo_x >>> G);
+      by0_d = RB'(lo_y >>> G);
+      bx1_d = RB'(hi_x >>> G);
+      by1_d = RB'(hi_y >>> G);
+      if ($signed(s1_rx0_q) > bx0_d) bx0_d = $signed(s1_rx0_q);
+      if ($signed(s1_ry0_q) > by0_d) by0_d = $signed(s1_ry0_q);
+      if ($signed(s1_rx1_q) < bx1_d) bx1_d = $signed(s1_rx1_q);
+      if ($signed(s1_ry1_q) < by1_d) by1_d = $signed(s1_ry1_q);
     end
-    // ceil((min - h) / 2^G) = floor((min - h + 2^G - 1) / 2^G); floor((max - h) / 2^G)
-    lo_x = (CB+2)'($signed(s1_xmin_q)) + (CB+2)'(HalfPx - 1);
-    lo_y = (CB+2)'($signed(s1_ymin_q)) + (CB+2)'(HalfPx - 1);
-    hi_x = (CB+2)'($signed(s1_xmax_q)) - (CB+2)'(HalfPx);
-    hi_y = (CB+2)'($signed(s1_ymax_q)) - (CB+2)'(HalfPx);
-    bx0_d = RB'(lo_x >>> G);
-    by0_d = RB'(lo_y >>> G);
-    bx1_d = RB'(hi_x >>> G);
-    by1_d = RB'(hi_y >>> G);
-    if ($signed(s1_rx0_q) > bx0_d) bx0_d = $signed(s1_rx0_q);
-    if ($signed(s1_ry0_q) > by0_d) by0_d = $signed(s1_ry0_q);
-    if ($signed(s1_rx1_q) < bx1_d) bx1_d = $signed(s1_rx1_q);
-    if ($signed(s1_ry1_q) < by1_d) by1_d = $signed(s1_ry1_q);
   end
 
   logic [3*ECB-1:0] s2_a_q, s2_b_q;
@@ -189,7 +226,7 @@ module fxr_setup_edges #(
   logic                s2_range_q, s2_front_ccw_q;
   logic [1:0]          s2_cull_q;
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && v_i[1]) begin
       s2_a_q         <= s1_a_q;
       s2_b_q         <= s1_b_q;
       s2_c_q         <= c_d;
@@ -212,27 +249,39 @@ module fxr_setup_edges #(
   logic [2:0]            bias_d;
   logic [EVB-1:0]        area2_n;
   always_comb begin
-    ccw   = $signed(s2_area2_q) > 0;
-    front = ccw == s2_front_ccw_q;
-    back  = (s2_cull_q == CullBack && !front) || (s2_cull_q == CullFront && front);
-    empty = $signed(s2_bx0_q) > $signed(s2_bx1_q) || $signed(s2_by0_q) > $signed(s2_by1_q);
-    if (s2_range_q)            outcome_d = OutcomeRange;
-    else if (s2_area2_q == '0) outcome_d = OutcomeZeroArea;
-    else if (back)             outcome_d = OutcomeBackface;
-    else if (empty)            outcome_d = OutcomeNoSamples;
-    else                       outcome_d = OutcomeOk;
-    for (int k = 0; k < 3; k++) begin
-      a_n[k*ECB +: ECB] = ccw ? s2_a_q[k*ECB +: ECB] : -s2_a_q[k*ECB +: ECB];
-      b_n[k*ECB +: ECB] = ccw ? s2_b_q[k*ECB +: ECB] : -s2_b_q[k*ECB +: ECB];
-      c_n[k*EVB +: EVB] = ccw ? s2_c_q[k*EVB +: EVB] : -s2_c_q[k*EVB +: EVB];
-      // left: a > 0; top: a = 0 and b < 0 (the gradient (a, b) points inside)
-      bias_d[k] = !(($signed(a_n[k*ECB +: ECB]) > 0) || (a_n[k*ECB +: ECB] == '0 && $signed(b_n[k*ECB +: ECB]) < 0));
+    ccw = 1'b0;
+    front = 1'b0;
+    back = 1'b0;
+    empty = 1'b0;
+    outcome_d = OutcomeOk;
+    a_n = '0;
+    b_n = '0;
+    c_n = '0;
+    bias_d = '0;
+    area2_n = '0;
+    if (v_i[2]) begin
+      ccw   = $signed(s2_area2_q) > 0;
+      front = ccw == s2_front_ccw_q;
+      back  = (s2_cull_q == CullBack && !front) || (s2_cull_q == CullFront && front);
+      empty = $signed(s2_bx0_q) > $signed(s2_bx1_q) || $signed(s2_by0_q) > $signed(s2_by1_q);
+      if (s2_range_q)            outcome_d = OutcomeRange;
+      else if (s2_area2_q == '0) outcome_d = OutcomeZeroArea;
+      else if (back)             outcome_d = OutcomeBackface;
+      else if (empty)            outcome_d = OutcomeNoSamples;
+      else                       outcome_d = OutcomeOk;
+      for (int k = 0; k < 3; k++) begin
+        a_n[k*ECB +: ECB] = ccw ? s2_a_q[k*ECB +: ECB] : -s2_a_q[k*ECB +: ECB];
+        b_n[k*ECB +: ECB] = ccw ? s2_b_q[k*ECB +: ECB] : -s2_b_q[k*ECB +: ECB];
+        c_n[k*EVB +: EVB] = ccw ? s2_c_q[k*EVB +: EVB] : -s2_c_q[k*EVB +: EVB];
+        // left: a > 0; top: a = 0 and b < 0 (the gradient (a, b) points inside)
+        bias_d[k] = !(($signed(a_n[k*ECB +: ECB]) > 0) || (a_n[k*ECB +: ECB] == '0 && $signed(b_n[k*ECB +: ECB]) < 0));
+      end
+      area2_n = ccw ? s2_area2_q : -s2_area2_q;
     end
-    area2_n = ccw ? s2_area2_q : -s2_area2_q;
   end
 
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && v_i[2]) begin
       outcome_o <= outcome_d;
       a_o       <= a_n;
       b_o       <= b_n;

@@ -204,6 +204,11 @@ module fxr_setup_fields #(
       valid_q <= {valid_q[Last-1:0], in_valid_i};
     end
   end
+  // vs[c]: the data c registers after the input is valid. Each register stage loads, and each
+  // combinational stage computes, only for valid data (held / 0 otherwise: nothing reads it), so
+  // that the simulator skips an idle setup's wide products (docs/rtl.md, "Co-simulation speed").
+  logic [Latency:0] vs;
+  assign vs = {valid_q, in_valid_i};
 
   // ---- coverage: edges, 2A, culling, candidate rectangle (cycles 1-3) -----------------------
   logic [2:0]       outcome;
@@ -221,6 +226,7 @@ module fxr_setup_fields #(
   ) u_edges (
     .clk_i       (clk_i),
     .en_i        (advance),
+    .v_i         (vs[EdgeStages-1:0]),
     .x_i         ({v2_x_i, v1_x_i, v0_x_i}),
     .y_i         ({v2_y_i, v1_y_i, v0_y_i}),
     .z_i         ({v2_z_i, v1_z_i, v0_z_i}),
@@ -250,7 +256,7 @@ module fxr_setup_fields #(
   // ---- the planes' edge functions: attribute triangle or snapped (cycles 4-7) ---------------
   logic [3*AXB-1:0] ax_e, ay_e;  // attribute positions at cycle 3
   fxr_pipe #(.Width(6 * AXB), .Stages(EdgeStages)) u_pipe_axy (
-    .clk_i(clk_i), .en_i(advance),
+    .clk_i(clk_i), .en_i(advance), .v_i(vs[EdgeStages-1:0]),
     .d_i  ({v2_ax_i, v1_ax_i, v0_ax_i, v2_ay_i, v1_ay_i, v0_ay_i}),
     .q_o  ({ax_e, ay_e})
   );
@@ -270,6 +276,7 @@ module fxr_setup_fields #(
   ) u_attr (
     .clk_i  (clk_i),
     .en_i   (advance),
+    .v_i    (vs[EdgeStages +: AttrStages]),
     .ax_i   (ax_e),
     .ay_i   (ay_e),
     .x0_i   (bx0),
@@ -296,6 +303,7 @@ module fxr_setup_fields #(
   logic [EB-1:0]   exp_rw;
 
   fxr_setup_align #(.SigBits(RwSigBits), .ExpBits(EB), .Bits(InterpBlockBits)) u_align_rw (
+    .en_i (in_valid_i),
     .neg_i({v2_rw_neg_i, v1_rw_neg_i, v0_rw_neg_i}),
     .sig_i({v2_rw_sig_i, v1_rw_sig_i, v0_rw_sig_i}),
     .exp_i({v2_rw_exp_i, v1_rw_exp_i, v0_rw_exp_i}),
@@ -307,6 +315,7 @@ module fxr_setup_fields #(
   assign exp_den = interp_i ? '0 : exp_rw;
 
   fxr_setup_align #(.SigBits(VwSigBits), .ExpBits(EB), .Bits(InterpBlockBits)) u_align_vw0 (
+    .en_i (in_valid_i),
     .neg_i({v2_vw0_neg_i, v1_vw0_neg_i, v0_vw0_neg_i}),
     .sig_i({v2_vw0_sig_i, v1_vw0_sig_i, v0_vw0_sig_i}),
     .exp_i({v2_vw0_exp_i, v1_vw0_exp_i, v0_vw0_exp_i}),
@@ -314,6 +323,7 @@ module fxr_setup_fields #(
     .exp_o(exp_num[0])
   );
   fxr_setup_align #(.SigBits(VwSigBits), .ExpBits(EB), .Bits(InterpBlockBits)) u_align_vw1 (
+    .en_i (in_valid_i),
     .neg_i({v2_vw1_neg_i, v1_vw1_neg_i, v0_vw1_neg_i}),
     .sig_i({v2_vw1_sig_i, v1_vw1_sig_i, v0_vw1_sig_i}),
     .exp_i({v2_vw1_exp_i, v1_vw1_exp_i, v0_vw1_exp_i}),
@@ -325,13 +335,13 @@ module fxr_setup_fields #(
   logic [3*QB-1:0] q_den_p, q_num_p [NV];
   logic [3*ZB-1:0] z_p;
   fxr_pipe #(.Width(3 * QB + 3 * ZB), .Stages(PlaneIn)) u_pipe_qden (
-    .clk_i(clk_i), .en_i(advance),
+    .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn-1:0]),
     .d_i  ({q_den, v2_z_i, v1_z_i, v0_z_i}),
     .q_o  ({q_den_p, z_p})
   );
   for (genvar m = 0; m < NV; m++) begin : g_qnum
     fxr_pipe #(.Width(3 * QB), .Stages(PlaneIn)) u_pipe_qnum (
-      .clk_i(clk_i), .en_i(advance), .d_i(q_num[m]), .q_o(q_num_p[m])
+      .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn-1:0]), .d_i(q_num[m]), .q_o(q_num_p[m])
     );
   end
 
@@ -342,29 +352,35 @@ module fxr_setup_fields #(
   logic [ZB-1:0]    zk, zr;
   logic             zup;
   always_comb begin
-    for (int k = 0; k < 3; k++) begin
-      zk  = z_p[k*ZB +: ZB];
-      zup = zk[Db-1] & ((|zk[Db-2:0]) | zk[Db]);
-      zr  = (zk >> Db) + ZB'(zup);
-      q_z[k*ZQB +: ZQB] = use_attr ? ZQB'(zk) - ZQB'(zr) : ZQB'(zk);
+    zk  = '0;
+    zup = 1'b0;
+    zr  = '0;
+    q_z = '0;
+    if (vs[PlaneIn]) begin
+      for (int k = 0; k < 3; k++) begin
+        zk  = z_p[k*ZB +: ZB];
+        zup = zk[Db-1] & ((|zk[Db-2:0]) | zk[Db]);
+        zr  = (zk >> Db) + ZB'(zup);
+        q_z[k*ZQB +: ZQB] = use_attr ? ZQB'(zk) - ZQB'(zr) : ZQB'(zk);
+      end
     end
   end
 
   // ---- planes (cycles 8-9) -------------------------------------------------------------------
   logic [ZPB-1:0] zc, zdx, zdy;
   fxr_setup_plane #(.AB(AB), .CWB(CWB), .SHB(SHB), .QB(ZQB), .PostBits(Db), .OutBits(ZPB)) u_plane_z (
-    .clk_i(clk_i), .en_i(advance), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_z),
+    .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn +: PlaneStages]), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_z),
     .post_m_i(!use_attr), .c_o(zc), .dx_o(zdx), .dy_o(zdy)
   );
   logic [IPB-1:0] dc, ddx, ddy;
   fxr_setup_plane #(.AB(AB), .CWB(CWB), .SHB(SHB), .QB(QB), .PostBits(0), .OutBits(IPB)) u_plane_den (
-    .clk_i(clk_i), .en_i(advance), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_den_p),
+    .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn +: PlaneStages]), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_den_p),
     .post_m_i(1'b0), .c_o(dc), .dx_o(ddx), .dy_o(ddy)
   );
   logic [IPB-1:0] nc [NV], ndx [NV], ndy [NV];
   for (genvar m = 0; m < NV; m++) begin : g_plane_num
     fxr_setup_plane #(.AB(AB), .CWB(CWB), .SHB(SHB), .QB(QB), .PostBits(0), .OutBits(IPB)) u_plane_num (
-      .clk_i(clk_i), .en_i(advance), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_num_p[m]),
+      .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn +: PlaneStages]), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_num_p[m]),
       .post_m_i(1'b0), .c_o(nc[m]), .dx_o(ndx[m]), .dy_o(ndy[m])
     );
   end
@@ -373,13 +389,16 @@ module fxr_setup_fields #(
   // snapped one (cycle 7), then beside the planes.
   logic [EVB-1:0] area2_p;
   fxr_pipe #(.Width(EVB), .Stages(AttrStages)) u_pipe_area2 (
-    .clk_i(clk_i), .en_i(advance), .d_i(area2), .q_o(area2_p)
+    .clk_i(clk_i), .en_i(advance), .v_i(vs[EdgeStages +: AttrStages]), .d_i(area2), .q_o(area2_p)
   );
   logic [ZDB-1:0] zden_d, zden;
-  assign zden_d = use_attr ? ZDB'(area2_attr) << (ZFracBits - Db) : ZDB'(area2_p) << ZFracBits;
+  always_comb begin
+    zden_d = '0;
+    if (vs[PlaneIn]) zden_d = use_attr ? ZDB'(area2_attr) << (ZFracBits - Db) : ZDB'(area2_p) << ZFracBits;
+  end
   logic [2*PB-1:0] anchor;
   fxr_pipe #(.Width(ZDB + 2 * PB), .Stages(PlaneStages)) u_pipe_zden (
-    .clk_i(clk_i), .en_i(advance), .d_i({zden_d, pi0, pj0}), .q_o({zden, anchor})
+    .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn +: PlaneStages]), .d_i({zden_d, pi0, pj0}), .q_o({zden, anchor})
   );
 
   // ---- everything else beside the stages to the output (cycle 9) ----------------------------
@@ -392,14 +411,14 @@ module fxr_setup_fields #(
   logic             front_o_q;
   logic [PB-1:0]    bx0_o, bx1_o, by0_o, by1_o;
   fxr_pipe #(.Width(EdgeOut), .Stages(AttrStages + PlaneStages)) u_pipe_edges (
-    .clk_i(clk_i), .en_i(advance),
+    .clk_i(clk_i), .en_i(advance), .v_i(vs[EdgeStages +: AttrStages + PlaneStages]),
     .d_i  ({outcome, ea, eb, ec, ebias, area2, front, bx0, bx1, by0, by1}),
     .q_o  ({outcome_o_q, ea_o, eb_o, ec_o, ebias_o, area2_o_q, front_o_q, bx0_o, bx1_o, by0_o, by1_o})
   );
   logic [PrimBits-1:0] prim_o_q;
   logic [EB-1:0]       exp_den_o, exp_num_o [NV];
   fxr_pipe #(.Width(PrimBits + (1 + NV) * EB), .Stages(Latency)) u_pipe_prim (
-    .clk_i(clk_i), .en_i(advance),
+    .clk_i(clk_i), .en_i(advance), .v_i(vs[Latency-1:0]),
     .d_i  ({prim_i, exp_den, exp_num[0], exp_num[1]}),
     .q_o  ({prim_o_q, exp_den_o, exp_num_o[0], exp_num_o[1]})
   );

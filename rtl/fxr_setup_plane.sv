@@ -19,6 +19,7 @@ module fxr_setup_plane #(
 ) (
   input  logic               clk_i,
   input  logic               en_i,
+  input  logic [1:0]         v_i,       // v_i[s]: stage s's input is valid (else skipped)
   input  logic [3*AB-1:0]    a_i,
   input  logic [3*AB-1:0]    b_i,
   input  logic [3*CWB-1:0]   c_i,
@@ -39,10 +40,15 @@ module fxr_setup_plane #(
   logic [3*PAW-1:0] pa_d, pb_d;
   logic [3*PCW-1:0] pc_d;
   always_comb begin
-    for (int k = 0; k < 3; k++) begin
-      pa_d[k*PAW +: PAW] = PAW'($signed(a_i[k*AB +: AB])) * PAW'($signed(q_i[k*QB +: QB]));
-      pb_d[k*PAW +: PAW] = PAW'($signed(b_i[k*AB +: AB])) * PAW'($signed(q_i[k*QB +: QB]));
-      pc_d[k*PCW +: PCW] = PCW'($signed(c_i[k*CWB +: CWB])) * PCW'($signed(q_i[k*QB +: QB]));
+    pa_d = '0;
+    pb_d = '0;
+    pc_d = '0;
+    if (v_i[0]) begin
+      for (int k = 0; k < 3; k++) begin
+        pa_d[k*PAW +: PAW] = PAW'($signed(a_i[k*AB +: AB])) * PAW'($signed(q_i[k*QB +: QB]));
+        pb_d[k*PAW +: PAW] = PAW'($signed(b_i[k*AB +: AB])) * PAW'($signed(q_i[k*QB +: QB]));
+        pc_d[k*PCW +: PCW] = PCW'($signed(c_i[k*CWB +: CWB])) * PCW'($signed(q_i[k*QB +: QB]));
+      end
     end
   end
 
@@ -51,7 +57,7 @@ module fxr_setup_plane #(
   logic [SHB-1:0]   shift_q;
   logic             post_q;
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && v_i[0]) begin
       pa_q    <= pa_d;
       pb_q    <= pb_d;
       pc_q    <= pc_d;
@@ -66,22 +72,24 @@ module fxr_setup_plane #(
     sa = '0;
     sb = '0;
     sc = '0;
-    for (int k = 0; k < 3; k++) begin
-      sa = sa + IW'($signed(pa_q[k*PAW +: PAW]));
-      sb = sb + IW'($signed(pb_q[k*PAW +: PAW]));
-      sc = sc + IW'($signed(pc_q[k*PCW +: PCW]));
-    end
-    sa = sa <<< shift_q;
-    sb = sb <<< shift_q;
-    if (PostBits > 0 && post_q) begin
-      sa = (sa <<< PostBits) - sa;
-      sb = (sb <<< PostBits) - sb;
-      sc = (sc <<< PostBits) - sc;
+    if (v_i[1]) begin
+      for (int k = 0; k < 3; k++) begin
+        sa = sa + IW'($signed(pa_q[k*PAW +: PAW]));
+        sb = sb + IW'($signed(pb_q[k*PAW +: PAW]));
+        sc = sc + IW'($signed(pc_q[k*PCW +: PCW]));
+      end
+      sa = sa <<< shift_q;
+      sb = sb <<< shift_q;
+      if (PostBits > 0 && post_q) begin
+        sa = (sa <<< PostBits) - sa;
+        sb = (sb <<< PostBits) - sb;
+        sc = (sc <<< PostBits) - sc;
+      end
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && v_i[1]) begin
       c_o  <= OutBits'(sc);
       dx_o <= OutBits'(sa);
       dy_o <= OutBits'(sb);
