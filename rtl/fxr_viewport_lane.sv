@@ -83,36 +83,27 @@ module fxr_viewport_lane #(
   logic signed [PBits-1:0] p_in;
   logic [DBits-1:0]     rem_in;
   logic [RestBits-1:0]  rest_in;
-  always_comb begin
-    n_zero  = 1'b0;
-    p_in    = '0;
-    rem_in  = '0;
-    rest_in = '0;
-    if (valid_i) begin
-      n_zero = ~|n;
-      p_in = n_zero ? PBits'(zexp_i)
-                    : PBits'($signed({1'b0, n_msb})) - PBits'($signed({1'b0, d_msb})) + PBits'(k_i);
-      // rem before the first step is N_norm's top DBits − 1 bits: step 0 then shifts in the next.
-      rem_in = DBits'(n_norm[NBits-1 -: DBits-1]);
-      rest_in = n_norm[RestBits-1:0];
-    end
-  end
+  assign n_zero = ~|n;
+  assign p_in = n_zero ? PBits'(zexp_i)
+                            : PBits'($signed({1'b0, n_msb})) - PBits'($signed({1'b0, d_msb})) + PBits'(k_i);
+  // rem before the first step is N_norm's top DBits − 1 bits: step 0 then shifts in the next.
+  assign rem_in = DBits'(n_norm[NBits-1 -: DBits-1]);
+  assign rest_in = n_norm[RestBits-1:0];
 
   // ---- the divider: stage 0 holds the pre register, stage t + 1 the result of step t ---------
-  // Each stage's registers are variables of their own (stage 0 here, stage t + 1 in g_step[t]),
-  // read by the next step through the generate scope: not slices of flat vectors, whose
-  // unaligned word inserts made the simulated lane several times dearer (docs/rtl.md,
-  // "Co-simulation speed"); not unpacked arrays (Icarus 11 does not update continuous assignments
-  // from unpacked array words written in other generate scopes, Yosys 0.23 reads no
+  // Flat vectors, slice t the register after step t − 1 (Icarus 11 does not update continuous
+  // assignments from unpacked array words written in other generate scopes, Yosys 0.23 reads no
   // multi-dimensional packed arrays).
   localparam int RemBits = DBits;  // the remainder stays below d
-  logic [QuotBits:0]       v_q;
-  logic [1:0]              kind0_q;
-  logic                    neg0_q, zero0_q;
-  logic signed [PBits-1:0] p0_q;
-  logic [RemBits-1:0]      rem0_q;
-  logic [RestBits-1:0]     rest0_q;
-  logic [DBits-1:0]        d0_q;
+  logic [2*(QuotBits+1)-1:0]        kind_q;
+  logic [QuotBits:0]                neg_q, zero_q, v_q;
+  logic [PBits*(QuotBits+1)-1:0]    p_q;
+  logic [RemBits*(QuotBits+1)-1:0]  rem_q;
+  logic [RestBits*(QuotBits+1)-1:0] rest_q;
+  /* verilator lint_off UNUSEDSIGNAL */  // slice t holds t quotient bits: the top one is read only in the last
+  logic [QuotBits*(QuotBits+1)-1:0] quo_q;
+  /* verilator lint_on UNUSEDSIGNAL */
+  logic [DBits*QuotBits-1:0]        d_q;  // the divisor of steps 0 … QuotBits − 1
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) v_q[0] <= 1'b0;
@@ -120,69 +111,30 @@ module fxr_viewport_lane #(
   end
   always_ff @(posedge clk_i) begin
     if (en_i && valid_i) begin
-      kind0_q <= kind_i;
-      neg0_q <= neg_i;
-      zero0_q <= n_zero;
-      p0_q <= p_in;
-      rem0_q <= rem_in;
-      rest0_q <= rest_in;
-      d0_q <= d_norm;
+      kind_q[(0)*2 +: 2] <= kind_i;
+      neg_q[0] <= neg_i;
+      zero_q[0] <= n_zero;
+      p_q[(0)*PBits +: PBits] <= p_in;
+      rem_q[(0)*RemBits +: RemBits] <= rem_in;
+      rest_q[(0)*RestBits +: RestBits] <= rest_in;
+      quo_q[(0)*QuotBits +: QuotBits] <= '0;
+      d_q[(0)*DBits +: DBits] <= d_norm;
     end
   end
 
   for (genvar t = 0; t < QuotBits; t++) begin : g_step
-    // stage t: the input of step t
-    logic [1:0]              kind_t;
-    logic                    neg_t, zero_t;
-    logic signed [PBits-1:0] p_t;
-    logic [RemBits-1:0]      rem_t;   // the remainder (< d)
-    logic [RestBits-1:0]     rest_t;
-    /* verilator lint_off UNUSEDSIGNAL */  // stage t holds t quotient bits: the top one is read only in the last
-    logic [QuotBits-1:0]     quo_t;
-    /* verilator lint_on UNUSEDSIGNAL */
-    logic [DBits-1:0]        d_t;
-    // stage t + 1: the result of step t
-    logic [1:0]              kind_r;
-    logic                    neg_r, zero_r;
-    logic signed [PBits-1:0] p_r;
-    logic [RemBits-1:0]      rem_r;
-    logic [RestBits-1:0]     rest_r;
-    logic [QuotBits-1:0]     quo_r;
-    /* verilator lint_off UNUSEDSIGNAL */  // the divisor of step t + 1: the last stage's is not read
-    logic [DBits-1:0]        d_r;
-    /* verilator lint_on UNUSEDSIGNAL */
-    if (t == 0) begin : g_from_pre
-      assign kind_t = kind0_q;
-      assign neg_t  = neg0_q;
-      assign zero_t = zero0_q;
-      assign p_t    = p0_q;
-      assign rem_t  = rem0_q;
-      assign rest_t = rest0_q;
-      assign quo_t  = '0;
-      assign d_t    = d0_q;
-    end else begin : g_from_step
-      assign kind_t = g_step[t-1].kind_r;
-      assign neg_t  = g_step[t-1].neg_r;
-      assign zero_t = g_step[t-1].zero_r;
-      assign p_t    = g_step[t-1].p_r;
-      assign rem_t  = g_step[t-1].rem_r;
-      assign rest_t = g_step[t-1].rest_r;
-      assign quo_t  = g_step[t-1].quo_r;
-      assign d_t    = g_step[t-1].d_r;
-    end
-
     logic [DBits:0]   r;
     logic [DBits+1:0] sub;   // r − d; its sign bit is the quotient bit's complement
     logic [DBits-1:0] diff;  // r − d when r ≥ d: below d
     logic             qb;
-    always_comb begin
-      r   = '0;
-      sub = '0;
-      if (v_q[t]) begin
-        r   = {rem_t, rest_t[RestBits-1]};
-        sub = {1'b0, r} - {2'b0, d_t};
-      end
-    end
+    logic [DBits-1:0]    rem_t;   // the remainder (< d)
+    logic [RestBits-1:0] rest_t;
+    logic [QuotBits-2:0] quo_t;   // the quotient bits that are kept
+    assign rem_t = rem_q[(t)*RemBits +: RemBits];
+    assign rest_t = rest_q[(t)*RestBits +: RestBits];
+    assign quo_t = quo_q[(t)*QuotBits +: QuotBits-1];
+    assign r = {rem_t, rest_t[RestBits-1]};
+    assign sub = {1'b0, r} - {2'b0, d_q[(t)*DBits +: DBits]};
     assign qb = !sub[DBits+1];
     assign diff = sub[DBits-1:0];
     always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -191,153 +143,132 @@ module fxr_viewport_lane #(
     end
     always_ff @(posedge clk_i) begin
       if (en_i && v_q[t]) begin
-        kind_r <= kind_t;
-        neg_r <= neg_t;
-        zero_r <= zero_t;
-        p_r <= p_t;
-        rem_r <= qb ? diff : r[DBits-1:0];
-        rest_r <= {rest_t[RestBits-2:0], 1'b0};
-        quo_r <= {quo_t[QuotBits-2:0], qb};
-        d_r <= d_t;
+        kind_q[(t+1)*2 +: 2] <= kind_q[(t)*2 +: 2];
+        neg_q[t+1] <= neg_q[t];
+        zero_q[t+1] <= zero_q[t];
+        p_q[(t+1)*PBits +: PBits] <= p_q[(t)*PBits +: PBits];
+        rem_q[(t+1)*RemBits +: RemBits] <= qb ? diff : r[DBits-1:0];
+        rest_q[(t+1)*RestBits +: RestBits] <= {rest_t[RestBits-2:0], 1'b0};
+        quo_q[(t+1)*QuotBits +: QuotBits] <= {quo_t, qb};
+      end
+    end
+    if (t + 1 < QuotBits) begin : g_d
+      always_ff @(posedge clk_i) begin
+        if (en_i && v_q[t]) d_q[(t+1)*DBits +: DBits] <= d_q[(t)*DBits +: DBits];
       end
     end
   end
 
   // ---- post ---------------------------------------------------------------------------------
+  logic [1:0]              m_kind;
+  logic                    m_neg, m_zero;
+  logic signed [PBits-1:0] m_p;
+  logic [QuotBits-1:0]     f;
+  logic                    rem_nz;
+  assign m_kind = kind_q[(QuotBits)*2 +: 2];
+  assign m_neg = neg_q[QuotBits];
+  assign m_zero = zero_q[QuotBits];
+  assign m_p = $signed(p_q[(QuotBits)*PBits +: PBits]);
+  assign f = quo_q[(QuotBits)*QuotBits +: QuotBits];
+  assign rem_nz = (|rem_q[(QuotBits)*RemBits +: RemBits]) | (|rest_q[(QuotBits)*RestBits +: RestBits]);
+
+  // Q4 = jam(F·2^(P+3−QuotBits)) for XW / YW / ZD: a right shift by sr = QuotBits − 3 − P ≥ 0.
   localparam int SrBits = PBits + 1;
+  logic signed [SrBits-1:0] sr;
+  logic [QuotBits-1:0]      q4, q4_mask;
+  logic [ShBits-1:0]        q4_sh;
+  logic                     q4_all;
+  assign sr = SrBits'(QuotBits - 3) - SrBits'(m_p);
+  assign q4_all = sr >= SrBits'(QuotBits);
+  assign q4_sh = q4_all ? '0 : (sr < 0 ? '0 : ShBits'(sr));
+  assign q4_mask = ~({QuotBits{1'b1}} << q4_sh);
+  logic q4_st, zq_up;
+  assign q4_st = (|(f & q4_mask)) | rem_nz;
+  assign q4 = m_zero ? '0
+                     : q4_all ? QuotBits'(1)  // f' > 0: only the sticky bit is left
+                              : ((f >> q4_sh) | {{(QuotBits - 1){1'b0}}, q4_st});
+
+  // XW / YW: v = RNE((4C ± Q4) / 4).
   localparam int CBits = WindowIntBits + 2 + AttrSubBits + 2;  // 4C (signed)
   localparam int XBits = (CBits > QuotBits + 1 ? CBits : QuotBits + 1) + 1;
   localparam logic signed [XBits-1:0] PosMax = (XBits'(1) <<< (PosBits - 1)) - XBits'(1);
   localparam logic signed [XBits-1:0] PosMin = -(XBits'(1) <<< (PosBits - 1));
+  logic signed [XBits-1:0] c4, x4, pos;
+  logic                    pos_up, pos_ovf;
+  always_comb begin
+    if (m_kind == 2'd1) c4 = (XBits'($signed(size_y_i)) + (XBits'(origin_y_i) <<< 1)) <<< (AttrSubBits + 1);
+    else c4 = (XBits'($signed(size_x_i)) + (XBits'(origin_x_i) <<< 1)) <<< (AttrSubBits + 1);
+  end
+  assign x4 = m_neg ? c4 - XBits'(q4) : c4 + XBits'(q4);
+  assign pos_up = x4[1] & (x4[0] | x4[2]);
+  assign pos = (x4 >>> 2) + $signed(XBits'(pos_up));
+  assign pos_ovf = !m_zero && (m_p > PBits'(QuotIntXY));
+
+  // ZD: v = RNE(Q4 / 4), saturated.
   localparam int ZBits = ZFracBits + 1;
   localparam logic [QuotBits-1:0] ZOne = QuotBits'(1) << ZFracBits;
-  logic                     m_v;
-  logic [1:0]               m_kind;
-  logic                     m_neg, m_zero;
-  logic signed [PBits-1:0]  m_p;
-  logic [QuotBits-1:0]      f;
-  logic                     rem_nz;
-  logic signed [SrBits-1:0] sr;
-  logic [QuotBits-1:0]      q4, q4_mask;
-  logic [ShBits-1:0]        q4_sh;
-  logic                     q4_all, q4_st;
-  logic signed [XBits-1:0]  c4, x4, pos;
-  logic                     pos_up, pos_ovf;
-  logic                     zq_up;
-  logic [QuotBits-1:0]      zq;
-  logic [ZBits-1:0]         z;
+  logic [QuotBits-1:0] zq;
+  logic [ZBits-1:0]    z;
+  assign zq_up = q4[1] & (q4[0] | q4[2]);
+  assign zq = (q4 >> 2) + {{(QuotBits - 1){1'b0}}, zq_up};
+  always_comb begin
+    if (m_zero || m_neg) z = '0;
+    else if (m_p > PBits'(QuotIntZ) || zq > ZOne) z = ZBits'(ZOne);
+    else z = zq[ZBits-1:0];
+  end
+
+  // FLT: RNE to AttrSigBits bits.
   logic [AttrSigBits-1:0]   top_sig;
   logic                     g, st, fup;
   logic [AttrSigBits:0]     inc;
   logic [AttrSigBits-1:0]   fsig;
   logic signed [PBits-1:0]  fexp;
-  logic [ResBits-1:0]       res;
-  logic                     rng;
-  assign m_v = v_q[QuotBits];
   always_comb begin
-    m_kind  = '0;
-    m_neg   = 1'b0;
-    m_zero  = 1'b0;
-    m_p     = '0;
-    f       = '0;
-    rem_nz  = 1'b0;
-    sr      = '0;
-    q4_all  = 1'b0;
-    q4_sh   = '0;
-    q4_mask = '0;
-    q4_st   = 1'b0;
-    q4      = '0;
-    c4      = '0;
-    x4      = '0;
-    pos_up  = 1'b0;
-    pos     = '0;
-    pos_ovf = 1'b0;
-    zq_up   = 1'b0;
-    zq      = '0;
-    z       = '0;
-    top_sig = '0;
-    g       = 1'b0;
-    st      = 1'b0;
-    fup     = 1'b0;
-    inc     = '0;
-    fsig    = '0;
-    fexp    = '0;
-    res     = '0;
-    rng     = 1'b0;
-    if (m_v) begin
-      m_kind = g_step[QuotBits-1].kind_r;
-      m_neg = g_step[QuotBits-1].neg_r;
-      m_zero = g_step[QuotBits-1].zero_r;
-      m_p = g_step[QuotBits-1].p_r;
-      f = g_step[QuotBits-1].quo_r;
-      rem_nz = (|g_step[QuotBits-1].rem_r) | (|g_step[QuotBits-1].rest_r);
-
-      // Q4 = jam(F·2^(P+3−QuotBits)) for XW / YW / ZD: a right shift by sr = QuotBits − 3 − P ≥ 0.
-      sr = SrBits'(QuotBits - 3) - SrBits'(m_p);
-      q4_all = sr >= SrBits'(QuotBits);
-      q4_sh = q4_all ? '0 : (sr < 0 ? '0 : ShBits'(sr));
-      q4_mask = ~({QuotBits{1'b1}} << q4_sh);
-      q4_st = (|(f & q4_mask)) | rem_nz;
-      q4 = m_zero ? '0
-                  : q4_all ? QuotBits'(1)  // f' > 0: only the sticky bit is left
-                           : ((f >> q4_sh) | {{(QuotBits - 1){1'b0}}, q4_st});
-
-      // XW / YW: v = RNE((4C ± Q4) / 4).
-      if (m_kind == 2'd1) c4 = (XBits'($signed(size_y_i)) + (XBits'(origin_y_i) <<< 1)) <<< (AttrSubBits + 1);
-      else c4 = (XBits'($signed(size_x_i)) + (XBits'(origin_x_i) <<< 1)) <<< (AttrSubBits + 1);
-      x4 = m_neg ? c4 - XBits'(q4) : c4 + XBits'(q4);
-      pos_up = x4[1] & (x4[0] | x4[2]);
-      pos = (x4 >>> 2) + $signed(XBits'(pos_up));
-      pos_ovf = !m_zero && (m_p > PBits'(QuotIntXY));
-
-      // ZD: v = RNE(Q4 / 4), saturated.
-      zq_up = q4[1] & (q4[0] | q4[2]);
-      zq = (q4 >> 2) + {{(QuotBits - 1){1'b0}}, zq_up};
-      if (m_zero || m_neg) z = '0;
-      else if (m_p > PBits'(QuotIntZ) || zq > ZOne) z = ZBits'(ZOne);
-      else z = zq[ZBits-1:0];
-
-      // FLT: RNE to AttrSigBits bits.
-      if (f[QuotBits-1]) begin
-        top_sig = f[QuotBits-1 -: AttrSigBits];
-        g = f[QuotBits-1-AttrSigBits];
-        st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 1 - AttrSigBits)) - QuotBits'(1))));
-        fexp = m_p - PBits'(AttrSigBits - 1);
-      end else begin
-        top_sig = f[QuotBits-2 -: AttrSigBits];
-        g = f[QuotBits-2-AttrSigBits];
-        st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 2 - AttrSigBits)) - QuotBits'(1))));
-        fexp = m_p - PBits'(AttrSigBits);
-      end
-      fup = g & (st | top_sig[0]);
-      inc = {1'b0, top_sig} + (AttrSigBits + 1)'(fup);
-      if (m_zero) begin
-        fsig = '0;
-        fexp = m_p;
-      end else if (inc[AttrSigBits]) begin
-        fsig = {1'b1, {(AttrSigBits - 1){1'b0}}};
-        fexp = fexp + PBits'(1);
-      end else begin
-        fsig = inc[AttrSigBits-1:0];
-      end
-
-      unique case (m_kind)
-        2'd0, 2'd1: begin
-          res = ResBits'(pos[PosBits-1:0]);
-          rng = pos_ovf || pos > PosMax || pos < PosMin;
-        end
-        2'd2: res = ResBits'(z);
-        default: res = ResBits'({m_neg, fsig, fexp[ExpBits-1:0]});
-      endcase
+    if (f[QuotBits-1]) begin
+      top_sig = f[QuotBits-1 -: AttrSigBits];
+      g = f[QuotBits-1-AttrSigBits];
+      st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 1 - AttrSigBits)) - QuotBits'(1))));
+      fexp = m_p - PBits'(AttrSigBits - 1);
+    end else begin
+      top_sig = f[QuotBits-2 -: AttrSigBits];
+      g = f[QuotBits-2-AttrSigBits];
+      st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 2 - AttrSigBits)) - QuotBits'(1))));
+      fexp = m_p - PBits'(AttrSigBits);
     end
+    fup = g & (st | top_sig[0]);
+    inc = {1'b0, top_sig} + (AttrSigBits + 1)'(fup);
+    if (m_zero) begin
+      fsig = '0;
+      fexp = m_p;
+    end else if (inc[AttrSigBits]) begin
+      fsig = {1'b1, {(AttrSigBits - 1){1'b0}}};
+      fexp = fexp + PBits'(1);
+    end else begin
+      fsig = inc[AttrSigBits-1:0];
+    end
+  end
+
+  logic [ResBits-1:0] res;
+  logic               rng;
+  always_comb begin
+    res = '0;
+    rng = 1'b0;
+    unique case (m_kind)
+      2'd0, 2'd1: begin
+        res = ResBits'(pos[PosBits-1:0]);
+        rng = pos_ovf || pos > PosMax || pos < PosMin;
+      end
+      2'd2: res = ResBits'(z);
+      default: res = ResBits'({m_neg, fsig, fexp[ExpBits-1:0]});
+    endcase
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) valid_o <= 1'b0;
-    else if (en_i) valid_o <= m_v;
+    else if (en_i) valid_o <= v_q[QuotBits];
   end
   always_ff @(posedge clk_i) begin
-    if (en_i && m_v) begin
+    if (en_i && v_q[QuotBits]) begin
       res_o <= res;
       range_o <= rng;
     end
