@@ -22,6 +22,9 @@ namespace fxr {
 
 namespace {
 
+// The x86-64 cache line: per-thread state is aligned to it (no false sharing), prefetches step by it.
+constexpr size_t kCacheLineBytes = 64;
+
 inline void cpu_relax() {
 #if defined(__x86_64__) || defined(__i386__)
   __builtin_ia32_pause();
@@ -79,8 +82,8 @@ class Barrier {
 
  private:
   const int n_;
-  alignas(64) std::atomic<int> count_{0};
-  alignas(64) std::atomic<uint64_t> gen_{0};
+  alignas(kCacheLineBytes) std::atomic<int> count_{0};
+  alignas(kCacheLineBytes) std::atomic<uint64_t> gen_{0};
   std::mutex m_;
   std::condition_variable cv_;
 };
@@ -135,7 +138,7 @@ void copy_used(const TriangleEquations& a, int nv, TriangleEquations& b) {
 }
 
 // One thread's state; kept by the pool from frame to frame (buffers keep their capacity).
-struct alignas(64) Worker {
+struct alignas(kCacheLineBytes) Worker {
   RasterStats stats;
   Batch batch[2];             // by batch parity
   FragmentStore store[2];     // records of a raster step, by step parity
@@ -440,7 +443,7 @@ class FrameRun {
   static void prefetch(const Batch& b, size_t i) {
     const char* p = reinterpret_cast<const char*>(&b.eqs[i]);
     const size_t used = offsetof(TriangleEquations, interp) + offsetof(InterpSetup, num);
-    for (size_t o = 0; o < used; o += 64) __builtin_prefetch(p + o);
+    for (size_t o = 0; o < used; o += kCacheLineBytes) __builtin_prefetch(p + o);
     __builtin_prefetch(&b.meta[i]);
   }
 

@@ -400,27 +400,34 @@ TEST(DivFast64, BitIdenticalOnTenMillionPlusTiesAtDefaultAndEdgeWidths) {
   }
 }
 
-TEST(DivFast64, DirectedHardCases) {
+// The directed hard cases of a 64-bit fast path `fast(c, n, d)`: largest and smallest quotients,
+// equal operands, one-off neighbours, D at its extremes, the zero operands, at the edge shapes and
+// the default; against div_sig_exact and the independent reference.
+template <class Fast>
+void expect_fast_path_on_hard_cases(Fast fast) {
   std::vector<DivConfig> cs = fast64_edge_shapes();
   cs.push_back(DivConfig{});
   for (const DivConfig& c : cs) {
     const uint64_t nlo = 1ull << (c.num_bits - 1), nhi = 2 * nlo - 1;
     const uint64_t dlo = 1ull << (c.den_bits - 1), dhi = 2 * dlo - 1;
-    // Largest and smallest quotients, equal operands, one-off neighbours, the specials.
     const uint64_t ns[] = {nlo, nlo + 1, nhi, nhi - 1, nlo | (nlo >> 1)};
     const uint64_t ds[] = {dlo, dlo + 1, dhi, dhi - 1, dlo | (dlo >> 1)};
     for (uint64_t n : ns)
       for (uint64_t d : ds) {
-        EXPECT_EQ(div_sig_fast64(c, n, d), div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
-        EXPECT_EQ(div_sig_fast64(c, n, d), ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d))
+        EXPECT_EQ(fast(c, n, d), div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+        EXPECT_EQ(fast(c, n, d), ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d))
             << div_label(c) << " n=" << n << " d=" << d;
       }
-    for (uint64_t d : ds) EXPECT_EQ(div_sig_fast64(c, 0, d), div_sig_exact(c, 0, d));
-    for (uint64_t n : ns) EXPECT_EQ(div_sig_fast64(c, n, 0), div_sig_exact(c, n, 0));
+    for (uint64_t d : ds) EXPECT_EQ(fast(c, 0, d), div_sig_exact(c, 0, d));
+    for (uint64_t n : ns) EXPECT_EQ(fast(c, n, 0), div_sig_exact(c, n, 0));
   }
   // The rounding carry-out (RoundingCarryOutRenormalises): 2 − 2^−31 → 2^23·2^+1.
   const DivConfig c;
-  EXPECT_EQ(div_sig_fast64(c, 0xFFFFFFFFull, 1ull << 31), (DivSig{1ull << 23, 1}));
+  EXPECT_EQ(fast(c, 0xFFFFFFFFull, 1ull << 31), (DivSig{1ull << 23, 1}));
+}
+
+TEST(DivFast64, DirectedHardCases) {
+  expect_fast_path_on_hard_cases([](const DivConfig& c, uint64_t n, uint64_t d) { return div_sig_fast64(c, n, d); });
 }
 
 // ---- one reciprocal per pixel (div_sig_recip64, docs/speed.md "The fused span") -------------
@@ -488,23 +495,6 @@ TEST(DivRecip64, BitIdenticalOnTenMillionPlusTiesAtDefaultAndEdgeWidths) {
 }
 
 TEST(DivRecip64, DirectedHardCases) {
-  std::vector<DivConfig> cs = fast64_edge_shapes();
-  cs.push_back(DivConfig{});
-  for (const DivConfig& c : cs) {
-    const uint64_t nlo = 1ull << (c.num_bits - 1), nhi = 2 * nlo - 1;
-    const uint64_t dlo = 1ull << (c.den_bits - 1), dhi = 2 * dlo - 1;
-    // Largest and smallest quotients, equal operands, one-off neighbours, D at its extremes, the specials.
-    const uint64_t ns[] = {nlo, nlo + 1, nhi, nhi - 1, nlo | (nlo >> 1)};
-    const uint64_t ds[] = {dlo, dlo + 1, dhi, dhi - 1, dlo | (dlo >> 1)};
-    for (uint64_t n : ns)
-      for (uint64_t d : ds) {
-        EXPECT_EQ(div_sig_recip64(c, n, d, div_recip64(c, d)), div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
-        EXPECT_EQ(div_sig_recip64(c, n, d, div_recip64(c, d)), ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d))
-            << div_label(c) << " n=" << n << " d=" << d;
-      }
-    for (uint64_t d : ds) EXPECT_EQ(div_sig_recip64(c, 0, d, div_recip64(c, d)), div_sig_exact(c, 0, d));
-    for (uint64_t n : ns) EXPECT_EQ(div_sig_recip64(c, n, 0, div_recip64(c, 0)), div_sig_exact(c, n, 0));
-  }
-  const DivConfig c;
-  EXPECT_EQ(div_sig_recip64(c, 0xFFFFFFFFull, 1ull << 31, div_recip64(c, 1ull << 31)), (DivSig{1ull << 23, 1}));
+  expect_fast_path_on_hard_cases(
+      [](const DivConfig& c, uint64_t n, uint64_t d) { return div_sig_recip64(c, n, d, div_recip64(c, d)); });
 }
