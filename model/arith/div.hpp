@@ -159,9 +159,10 @@ inline DivSig div_sig_fast64(const DivConfig& c, uint64_t n, uint64_t d) {
 // R = div_recip64(c, d); returns exactly div_sig_fast64(c, n, d) (= div_sig_exact, tests/model/
 // div_test.cpp DivRecip64.*: exhaustive 12-bit-class shapes, random, ties and the estimate's
 // off-by-one reached; 10^8 in tests/model/div_slow_test.cpp).
+// R with the widths as arguments (w = div_align_bits, db of the configuration; d ≠ 0).
+inline uint64_t div_recip64_w(int w, int db, uint64_t d) { return ~uint64_t{0} / (d << (w - db)); }
 inline uint64_t div_recip64(const DivConfig& c, uint64_t d) {
-  const uint64_t b = d << (div_align_bits(c) - c.den_bits);
-  return b == 0 ? 0 : ~uint64_t{0} / b;
+  return d == 0 ? 0 : div_recip64_w(div_align_bits(c), c.den_bits, d);
 }
 // The estimate alone: floor(num·R / 2^64) (exposed for the tests, which count its corrections).
 inline uint64_t div_recip64_estimate(uint64_t num, uint64_t R) { return (uint64_t)(((u128)num * R) >> 64); }

@@ -217,7 +217,7 @@ class FusedSpan {
               int de;
               const uint64_t d = den_.norm.sig_bits(den_.mag, de, wd.db);
               de += ed;
-              const uint64_t R = ~uint64_t{0} / (d << (wd.w - wd.db));  // div_recip64
+              const uint64_t R = div_recip64_w(wd.w, wd.db, d);
               for (int m = 0; m < nv; ++m) {
                 const Sum& s = num_[m];
                 FxFloat& out = f_.var[m];
