@@ -132,6 +132,7 @@ class GeometryChain {
   uint64_t pieces_rejected() const { return rejected_; }
   // The vertex cache (used without taps only): vertices found / computed.
   const VertexCache& vertex_cache() const { return cache_; }
+  VertexCache& vertex_cache() { return cache_; }  // (to share a table: model/unit/threads.cpp)
 
  private:
   Taps& taps_;

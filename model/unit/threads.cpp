@@ -178,6 +178,7 @@ class Pool {
   std::vector<Worker>& workers() { return workers_; }
   bool busy = false;
   size_t last_records = 0;  // records the last frame kept: the next one reserves as many
+  SharedVertexTable vertices;  // the threads' vertex cache (docs/speed.md "Session 8: threads")
 
   template <class Fn>
   void run(Fn& fn) {
@@ -302,6 +303,13 @@ class FrameRun {
     }
     // The frame's store grows between steps (serial); a frame like the last needs no growth.
     if (keep_) keep_->reserve(pool.last_records);
+    // One vertex cache table for all the threads (a thread's own would miss the vertices the
+    // others computed: docs/speed.md "Session 8: threads"), for draws that fill one.
+    vertices_ = nullptr;
+    if (tris_.size() > kVertexCacheMinPrims) {
+      pool.vertices.begin(st_.num_varyings);
+      vertices_ = &pool.vertices;
+    }
     ctl_.fill_depth = reuse_depth_;
     ctl_.setup = nbatches_ > 0 ? 0 : -1;
     ctl_.done = false;
@@ -351,7 +359,10 @@ class FrameRun {
           }
           if (ctl_.setup >= 0) {
             phase(w, ThreadPhase::Setup);
-            if (!geometry) geometry.emplace(cfg_, st_, taps), setup.emplace(cfg_, st_, records_);
+            if (!geometry) {
+              geometry.emplace(cfg_, st_, taps), setup.emplace(cfg_, st_, records_);
+              if (vertices_) geometry->vertex_cache().share(*vertices_);
+            }
             set_up(w, *geometry, *setup, pieces, in);
           }
         } catch (...) {
@@ -607,6 +618,7 @@ class FrameRun {
   Barrier barrier_;
   std::atomic<bool> failed_{false};
   bool reuse_depth_ = false;
+  SharedVertexTable* vertices_ = nullptr;  // the threads' vertex cache table, or none
   int band_shift_ = -1;  // log2 band_rows when a power of two
 
   // The step every thread runs next; written by decide() only, between two steps.

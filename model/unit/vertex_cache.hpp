@@ -13,6 +13,7 @@
 // by running both on the same scenes (tests/model/shortcut_test.cpp, Shortcut.VertexCache*).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -51,6 +52,33 @@ inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardB
   return recip_vertex(cfg.recip, v, r) && snap_vertex(cfg, st, v, r, out) == ProjectStatus::Ok;
 }
 
+class VertexCache;
+
+// A table of vertex-cache slots that several VertexCaches share (VertexCache::share: the threads
+// of model/unit/threads.cpp, one cache object each), kept from draw to draw. begin() before each
+// draw empties it: a new epoch, written into every slot filled during the draw, makes the slots
+// of earlier draws empty; the words are cleared only when the slot layout (the varying count)
+// changes or the epochs wrap. Used by one draw at a time.
+class SharedVertexTable {
+ public:
+  void begin(int num_varyings) {
+    const size_t words = kVertexCacheBytes / sizeof(uint64_t);
+    if (words_.size() != words || nv_ != num_varyings || epoch_ == kMaxEpoch) {
+      words_.assign(words, 0);
+      epoch_ = 0;
+      nv_ = num_varyings;
+    }
+    ++epoch_;
+  }
+
+ private:
+  friend class VertexCache;
+  static constexpr uint32_t kMaxEpoch = (uint32_t{1} << 30) - 1;  // a slot's state keeps 2 bits beside it
+  std::vector<uint64_t> words_;
+  int nv_ = -1;
+  uint32_t epoch_ = 0;
+};
+
 class VertexCache {
  public:
   // Usable for a draw whose stage 1 accepts its varying count and whose guard band is valid
@@ -70,7 +98,7 @@ class VertexCache {
   bool triangle(const InputTriangle& in, SetupTriangle& out) {
     if (!usable_) return false;
     if (++prims_ <= min_prims_) return false;
-    if (buf_.empty()) allocate();
+    if (!table_) allocate();
     // The three slots are looked up after all three are requested (their cache misses overlap).
     uint32_t key[3][4 + kMaxVaryings];
     unsigned char* slot[3];
@@ -84,28 +112,55 @@ class VertexCache {
     return true;
   }
 
+  // Contract: this cache looks up and fills `table` (begun for this draw's varying count) instead
+  // of a table of its own, with any number of other caches at the same time, each from one
+  // thread. A slot is read and written under its sequence number (a seqlock): one being written,
+  // or rewritten while it was read, counts as a miss, computed here and not stored. The answers
+  // are those of an unshared cache (a slot only ever holds accepted_vertex of its key), so a
+  // draw's output does not depend on how its threads interleave.
+  void share(SharedVertexTable& table) {
+    if (!usable_ || table.nv_ != nv_) return;  // (a table begun for another draw: not shared)
+    layout(table.words_.size() * sizeof(uint64_t));
+    table_ = table.words_.data();
+    epoch_ = table.epoch_;
+    shared_ = true;
+  }
+
   uint64_t hits() const { return hits_; }
   uint64_t misses() const { return misses_; }
 
  private:
+  // A slot's state: epoch · 4 + kAccepted / kNotAccepted (epoch 0 unless shared), or kEmpty.
   enum : uint32_t { kEmpty = 0, kAccepted = 1, kNotAccepted = 2 };
   // A slot, contiguous (one or two adjacent cache lines at 2 varyings): the head, then the key
-  // words, then the varyings.
+  // words, then the varyings. The head's first word holds the state and the sequence number of
+  // a shared table (odd while a thread writes the slot).
   struct Head {
     uint32_t state = kEmpty;
+    uint32_t seq = 0;
     int64_t x = 0, y = 0, ax = 0, ay = 0;
     uint64_t z = 0;
     FxFloat rw;
   };
   static constexpr size_t kKeyOffset = sizeof(Head);
+  static_assert(offsetof(Head, seq) == sizeof(uint32_t), "state and seq are the head's first 64-bit word");
 
-  void allocate() {
+  static constexpr size_t kMaxSlotWords =
+      ((kKeyOffset + (4 + kMaxVaryings) * sizeof(uint32_t) + 7) / 8 * 8 + kMaxVaryings * sizeof(FxFloat) + 7) / 8;
+
+  // The slot layout of nv_ varyings, in a table of at most `bytes`.
+  void layout(size_t bytes) {
     kw_ = 4 + (size_t)nv_;
     vw_offset_ = (kKeyOffset + kw_ * sizeof(uint32_t) + 7) / 8 * 8;
     stride_ = (vw_offset_ + (size_t)nv_ * sizeof(FxFloat) + 7) / 8;  // in 64-bit words
-    while (bits_ > 8 && ((stride_ * 8) << bits_) > kVertexCacheBytes) --bits_;
-    buf_.assign(stride_ << bits_, 0);  // state 0 = kEmpty
+    while (bits_ > 8 && ((stride_ * 8) << bits_) > bytes) --bits_;
   }
+  void allocate() {
+    layout(kVertexCacheBytes);
+    buf_.assign(stride_ << bits_, 0);  // state 0 = kEmpty
+    table_ = buf_.data();
+  }
+  bool filled(uint32_t state) const { return state != kEmpty && state >> 2 == epoch_; }
 
   // The key words of `cv` (its float32 bits) and its slot.
   unsigned char* locate(const ClipVertex& cv, uint32_t* key) {
@@ -114,15 +169,16 @@ class VertexCache {
     uint64_t h = 0;
     for (size_t k = 0; k < kw_; ++k) h = (h ^ key[k]) * 0x9E3779B97F4A7C15ull;
     const size_t i = bits_ > 0 ? (size_t)(h >> (64 - bits_)) : 0;
-    return reinterpret_cast<unsigned char*>(&buf_[i * stride_]);
+    return reinterpret_cast<unsigned char*>(table_ + i * stride_);
   }
 
   bool vertex(const ClipVertex& cv, const uint32_t* key, unsigned char* slot, SetupVertex& out) {
+    if (shared_) return vertex_shared(cv, key, reinterpret_cast<uint64_t*>(slot), out);
     Head head;
     std::memcpy(&head, slot, sizeof(Head));
-    if (head.state != kEmpty && std::memcmp(slot + kKeyOffset, key, kw_ * sizeof(uint32_t)) == 0) {
+    if (filled(head.state) && std::memcmp(slot + kKeyOffset, key, kw_ * sizeof(uint32_t)) == 0) {
       ++hits_;
-      if (head.state != kAccepted) return false;
+      if ((head.state & 3) != kAccepted) return false;
       out.x = head.x, out.y = head.y, out.ax = head.ax, out.ay = head.ay, out.z = head.z, out.rw = head.rw;
       std::memcpy(out.vw, slot + vw_offset_, (size_t)nv_ * sizeof(FxFloat));
       return true;
@@ -130,12 +186,65 @@ class VertexCache {
     ++misses_;
     std::memcpy(slot + kKeyOffset, key, kw_ * sizeof(uint32_t));
     const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out);
-    head.state = ok ? kAccepted : kNotAccepted;
+    fill(head, ok, out, slot);
+    std::memcpy(slot, &head, sizeof(Head));
+    return ok;
+  }
+
+  // The head and varyings of a slot holding accepted_vertex's answer `ok`, `out` (its key
+  // words are written by the caller).
+  void fill(Head& head, bool ok, const SetupVertex& out, unsigned char* slot) const {
+    head.state = epoch_ << 2 | (ok ? kAccepted : kNotAccepted);
     if (ok) {
       head.x = out.x, head.y = out.y, head.ax = out.ax, head.ay = out.ay, head.z = out.z, head.rw = out.rw;
       std::memcpy(slot + vw_offset_, out.vw, (size_t)nv_ * sizeof(FxFloat));
     }
-    std::memcpy(slot, &head, sizeof(Head));
+  }
+
+  // vertex() on a shared table: the slot's words are read with atomic loads between two loads of
+  // its head word (equal, with an even sequence number: a consistent copy), and written by the
+  // thread that moved the sequence number from the even value it read to odd (then even again
+  // with the new state). Others' writes are never waited for: a miss.
+  bool vertex_shared(const ClipVertex& cv, const uint32_t* key, uint64_t* slot, SetupVertex& out) {
+    uint64_t copy[kMaxSlotWords];
+    const uint64_t w0 = __atomic_load_n(slot, __ATOMIC_ACQUIRE);
+    uint32_t state_seq[2];  // the head's first word: state, seq
+    std::memcpy(state_seq, &w0, sizeof(uint64_t));
+    const uint32_t state = state_seq[0], seq = state_seq[1];
+    const bool idle = (seq & 1) == 0;
+    if (idle && filled(state)) {
+      copy[0] = w0;
+      for (size_t k = 1; k < stride_; ++k) copy[k] = __atomic_load_n(slot + k, __ATOMIC_RELAXED);
+      __atomic_thread_fence(__ATOMIC_ACQUIRE);
+      const unsigned char* c = reinterpret_cast<const unsigned char*>(copy);
+      if (__atomic_load_n(slot, __ATOMIC_RELAXED) == w0 &&
+          std::memcmp(c + kKeyOffset, key, kw_ * sizeof(uint32_t)) == 0) {
+        ++hits_;
+        if ((state & 3) != kAccepted) return false;
+        Head head;
+        std::memcpy(&head, c, sizeof(Head));
+        out.x = head.x, out.y = head.y, out.ax = head.ax, out.ay = head.ay, out.z = head.z, out.rw = head.rw;
+        std::memcpy(out.vw, c + vw_offset_, (size_t)nv_ * sizeof(FxFloat));
+        return true;
+      }
+    }
+    ++misses_;
+    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out);
+    uint64_t expect = w0, busy;
+    state_seq[1] = seq + 1;  // odd: being written
+    std::memcpy(&busy, state_seq, sizeof(uint64_t));
+    if (!idle || !__atomic_compare_exchange_n(slot, &expect, busy, false, __ATOMIC_ACQUIRE, __ATOMIC_RELAXED))
+      return ok;  // another thread writes the slot
+    __atomic_thread_fence(__ATOMIC_RELEASE);
+    std::memset(copy, 0, stride_ * sizeof(uint64_t));
+    unsigned char* c = reinterpret_cast<unsigned char*>(copy);
+    std::memcpy(c + kKeyOffset, key, kw_ * sizeof(uint32_t));
+    Head fresh;
+    fill(fresh, ok, out, c);
+    fresh.seq = seq + 2;
+    std::memcpy(c, &fresh, sizeof(Head));
+    for (size_t k = 1; k < stride_; ++k) __atomic_store_n(slot + k, copy[k], __ATOMIC_RELAXED);
+    __atomic_store_n(slot, copy[0], __ATOMIC_RELEASE);
     return ok;
   }
 
@@ -148,7 +257,10 @@ class VertexCache {
   uint64_t prims_ = 0, hits_ = 0, misses_ = 0;
   int bits_;
   size_t kw_ = 4, vw_offset_ = 0, stride_ = 0;
-  std::vector<uint64_t> buf_;
+  std::vector<uint64_t> buf_;  // the table, unless shared
+  uint64_t* table_ = nullptr;
+  uint32_t epoch_ = 0;
+  bool shared_ = false;
 };
 
 }  // namespace fxr

@@ -9,14 +9,17 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <memory>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "frontend/scene.hpp"
 #include "model/unit/chain.hpp"
 #include "model/unit/raster_unit.hpp"
 #include "model/unit/threads.hpp"
+#include "model/unit/vertex_cache.hpp"
 #include "stats_fields.hpp"
 
 using namespace fxr;
@@ -285,4 +288,189 @@ TEST(FragmentStore, RoundTripsTheExtremesOfEveryField) {
   EXPECT_EQ(n[0].var[0].sig, in[7].var[0].sig);
   EXPECT_EQ(n[0].var[2].sig, 0u);
   EXPECT_EQ(n[0].prim, in[7].prim);
+}
+
+// The threads' shared vertex cache table (model/unit/vertex_cache.hpp, SharedVertexTable).
+namespace {
+
+DrawState vertex_state(int vx, int vy, int nv) {
+  DrawState st;
+  st.viewport_x = vx, st.viewport_y = vy, st.viewport_w = 200, st.viewport_h = 150;
+  st.num_varyings = nv;
+  return st;
+}
+
+// `n` distinct vertices, inside the view, with a few outside a clip plane (not accepted).
+std::vector<ClipVertex> some_vertices(std::mt19937_64& rng, int n, int nv) {
+  std::uniform_real_distribution<float> u(-0.9f, 0.9f), wf(0.5f, 3.0f), var(-50.0f, 50.0f);
+  std::vector<ClipVertex> vs((size_t)n);
+  for (size_t i = 0; i < vs.size(); ++i) {
+    ClipVertex& v = vs[i];
+    const float w = wf(rng);
+    v.pos[0] = u(rng) * w, v.pos[1] = u(rng) * w, v.pos[2] = (0.5f + 0.4f * u(rng)) * w, v.pos[3] = w;
+    if (i % 5 == 4) v.pos[2] = 1.5f * w;  // beyond the far plane
+    for (int k = 0; k < nv; ++k) v.var[k] = var(rng);
+  }
+  return vs;
+}
+
+// What the cache must answer for a vertex: accepted_vertex itself (the stages 1–4 functions).
+struct VertexAnswer {
+  bool ok = false;
+  SetupVertex v;
+};
+std::vector<VertexAnswer> answers(const Config& cfg, const DrawState& st, const std::vector<ClipVertex>& vs) {
+  const GuardBand gb = guard_band(cfg.raster, st);
+  std::vector<VertexAnswer> a(vs.size());
+  for (size_t i = 0; i < vs.size(); ++i) a[i].ok = accepted_vertex(cfg, st, gb, vs[i], a[i].v);
+  return a;
+}
+
+bool same_vertex(const SetupVertex& a, const SetupVertex& b, int nv) {
+  bool same = a.x == b.x && a.y == b.y && a.ax == b.ax && a.ay == b.ay && a.z == b.z && a.rw.neg == b.rw.neg &&
+              a.rw.sig == b.rw.sig && a.rw.exp == b.rw.exp;
+  for (int k = 0; k < nv; ++k)
+    same = same && a.vw[k].neg == b.vw[k].neg && a.vw[k].sig == b.vw[k].sig && a.vw[k].exp == b.vw[k].exp;
+  return same;
+}
+
+// Looks up `count` random triangles of `vs` in `cache`; returns the answers that differ from `want`.
+uint64_t wrong_answers(VertexCache& cache, uint64_t seed, int count, const std::vector<ClipVertex>& vs,
+                       const std::vector<VertexAnswer>& want, int nv) {
+  std::mt19937_64 rng(seed);
+  uint64_t wrong = 0;
+  for (int p = 0; p < count; ++p) {
+    size_t idx[3];
+    InputTriangle in;
+    in.prim = (uint32_t)p;
+    for (int i = 0; i < 3; ++i) idx[i] = rng() % vs.size(), in.tri.v[i] = vs[idx[i]];
+    SetupTriangle got;
+    const bool ok = cache.triangle(in, got);
+    bool expect_ok = true;
+    for (size_t i : idx) expect_ok = expect_ok && want[i].ok;
+    if (ok != expect_ok) {
+      ++wrong;
+      continue;
+    }
+    if (!ok) continue;
+    bool same = got.prim == in.prim;
+    for (int i = 0; i < 3; ++i) same = same && same_vertex(got.v[i], want[idx[i]].v, nv);
+    wrong += !same;
+  }
+  return wrong;
+}
+
+}  // namespace
+
+// Three threads look up and fill one shared slot (every vertex maps to it) at the same time:
+// slots are read while another thread rewrites them, yet every answer is accepted_vertex's for
+// the vertex looked up (a torn read answered would give another vertex's fields), and the slot
+// keeps being found (a sequence number left odd would make every lookup a miss). A tear needs a
+// reader and a writer within the same few nanoseconds: this run cannot force one, only never
+// answer wrongly while they interleave.
+TEST(Threads, SharedVertexTableUnderContentionAnswersAsTheStages) {
+  const Config cfg;
+  const int nv = 3;
+  const DrawState st = vertex_state(0, 0, nv);
+  std::mt19937_64 rng(0x7ab1e);
+  const std::vector<ClipVertex> vs = some_vertices(rng, 6, nv);
+  const std::vector<VertexAnswer> want = answers(cfg, st, vs);
+  SharedVertexTable table;
+  table.begin(nv);
+  constexpr int kThreads = 3, kCount = 60000;
+  std::vector<std::unique_ptr<VertexCache>> caches;
+  std::vector<uint64_t> wrong(kThreads);
+  for (int t = 0; t < kThreads; ++t) {
+    caches.emplace_back(new VertexCache(cfg, st, 0, 0));  // one slot, from the first primitive
+    caches.back()->share(table);
+  }
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t)
+    threads.emplace_back([&, t] { wrong[(size_t)t] = wrong_answers(*caches[(size_t)t], 100 + t, kCount, vs, want, nv); });
+  for (std::thread& th : threads) th.join();
+  uint64_t hits = 0, misses = 0;
+  for (int t = 0; t < kThreads; ++t) {
+    EXPECT_EQ(wrong[(size_t)t], 0u) << "thread " << t;
+    hits += caches[(size_t)t]->hits(), misses += caches[(size_t)t]->misses();
+  }
+  EXPECT_GT(hits, (uint64_t)kCount / 10);  // both outcomes, many times
+  EXPECT_GT(misses, (uint64_t)kCount / 10);
+}
+
+// A table filled through one cache answers another sharing it; the next draw (begin) finds it
+// empty — its own draw state's answers, never the last draw's — also when the varying count
+// changes the slot layout; a cache of another varying count than the table's keeps its own.
+// (A direct-mapped table: a second pass over the same lookups misses only where a later vertex
+// took the slot, and a third pass, through another cache, exactly as often.)
+TEST(Threads, SharedVertexTableIsSharedWithinADrawAndEmptiedForTheNext) {
+  const Config cfg;
+  std::mt19937_64 rng(0x7ab1f);
+  const std::vector<ClipVertex> vs = some_vertices(rng, 400, 2);
+  SharedVertexTable table;
+  const DrawState a = vertex_state(0, 0, 2), moved = vertex_state(-37, 11, 2), none = vertex_state(0, 0, 0);
+  const int count = 3000;
+  for (int round = 0; round < 2; ++round) {
+    for (const DrawState* st : {&a, &moved, &none, &a}) {
+      const int nv = st->num_varyings;
+      const std::vector<VertexAnswer> want = answers(cfg, *st, vs);
+      table.begin(nv);
+      VertexCache fresh(cfg, *st, kVertexCacheMaxSlotBits, 0);  // a table of its own
+      VertexCache first(cfg, *st, kVertexCacheMaxSlotBits, 0), second(cfg, *st, kVertexCacheMaxSlotBits, 0);
+      first.share(table);
+      second.share(table);
+      EXPECT_EQ(wrong_answers(fresh, 1, count, vs, want, nv), 0u);
+      EXPECT_EQ(wrong_answers(first, 1, count, vs, want, nv), 0u);
+      const uint64_t m1 = first.misses();
+      EXPECT_EQ(m1, fresh.misses()) << "round " << round;  // as empty as a new table
+      EXPECT_EQ(wrong_answers(first, 1, count, vs, want, nv), 0u);
+      const uint64_t m2 = first.misses() - m1;
+      EXPECT_LT(m2, m1 / 4);
+      EXPECT_EQ(wrong_answers(second, 1, count, vs, want, nv), 0u);
+      EXPECT_EQ(second.misses(), m2) << "round " << round;  // the other cache's vertices found
+    }
+    // A cache with 1 varying and the table begun for 2: not shared (its own table).
+    const DrawState one = vertex_state(0, 0, 1);
+    table.begin(2);
+    VertexCache other(cfg, one, kVertexCacheMaxSlotBits, 0);
+    other.share(table);
+    EXPECT_EQ(wrong_answers(other, 2, count, vs, answers(cfg, one, vs), 1), 0u);
+  }
+}
+
+// Meshes with shared vertices, large enough for the threads' shared vertex cache, drawn one
+// after the other through the same pool with other draw states (the viewport moved, the
+// varying count changed): each frame equals the sequential unit's.
+TEST(Threads, MeshesThroughTheSharedVertexCacheEqualTheSequentialUnit) {
+  std::mt19937_64 rng(0x7ab20);
+  Case c;
+  c.name = "mesh";
+  const int n = 40;  // (n − 1)² · 2 = 3,042 triangles, each vertex in up to 6
+  std::vector<ClipVertex> grid = some_vertices(rng, n * n, 2);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {  // a regular grid, jittered depths and w
+      ClipVertex& v = grid[(size_t)j * n + i];
+      const float w = v.pos[3];
+      v.pos[0] = (-1.1f + 2.2f * (float)i / (n - 1)) * w, v.pos[1] = (-1.1f + 2.2f * (float)j / (n - 1)) * w;
+    }
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const ClipVertex &p = grid[(size_t)j * n + i], &q = grid[(size_t)j * n + i + 1], &r = grid[(size_t)(j + 1) * n + i],
+                       &s = grid[(size_t)(j + 1) * n + i + 1];
+      c.tris.push_back(ClipTriangle{{p, q, s}});
+      c.tris.push_back(ClipTriangle{{p, s, r}});
+    }
+  // One thread count after the other: the draws of one count run on the same pool, whose table
+  // the next draw finds filled by the last (with the draw state it had).
+  for (int t : {2, 3}) {
+    ThreadOptions o;
+    o.threads = t, o.batch_prims = t == 2 ? 500 : kThreadBatchPrims;
+    for (const DrawState& st : {vertex_state(0, 0, 2), vertex_state(-23, 9, 2), vertex_state(0, 0, 0),
+                                vertex_state(0, 0, 2)}) {
+      c.st = st;
+      expect_same_frame(run_raster_unit(c.cfg, c.st, c.tris), run_raster_unit(c.cfg, c.st, c.tris, o), 2,
+                        "mesh, threads " + std::to_string(t) + ", viewport " + std::to_string(st.viewport_x) +
+                            ", varyings " + std::to_string(st.num_varyings));
+    }
+  }
+  check_case(c, {});  // (the sink and no-fragment paths)
 }
