@@ -123,6 +123,22 @@ struct ImageSink final : FragmentSink {
     m.depth[o] = f.depth;
     for (int k = 0; k < m.num_varyings; ++k) m.var[o * m.num_varyings + k] = f.var[k];
   }
+  // A span's records (the fused chain, model/unit/backend.hpp): read in place, no Fragment.
+  void emit_span(const FragmentRecords& b) override {
+    if (b.count == 0) return;
+    const int y = b.y(0);
+    if (y < 0 || y >= m.height) return;
+    for (size_t i = 0; i < b.count; ++i) {
+      const uint8_t* r = b.record(i);
+      const int32_t x = (int32_t)fragment_word(r, 1);
+      if (x < 0 || x >= m.width) continue;
+      const size_t o = m.index(x, y);
+      m.prim[o] = (int32_t)fragment_word(r, 0);
+      m.depth[o] = fragment_word(r, 3);
+      for (int k = 0; k < m.num_varyings; ++k)
+        m.var[o * m.num_varyings + k] = k < b.num_varyings ? get_fragment_var(r, k) : FxFloat{};
+    }
+  }
 };
 }  // namespace
 

@@ -24,6 +24,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <string>
@@ -177,13 +178,33 @@ void BM_ModelThreads(benchmark::State& state) {
 }
 
 // The model streaming its fragments into an image (FragmentSink), as the float rasterizer and
-// llvmpipe write a framebuffer, instead of keeping a std::vector<Fragment> per frame.
+// llvmpipe write a framebuffer, instead of keeping a std::vector<Fragment> per frame. Each pixel
+// holds its varyings as the compact record's 8-byte words (model/unit/fragment_store.hpp: the
+// significand and exponent·2 + sign); the fused span path hands it a span's records at once
+// (emit_span: a copy of each record's varying words), the staged path one Fragment at a time.
 struct ImageSink : FragmentSink {
   int width = 0, nv = 0;
-  std::vector<FxFloat> var;  // nv per pixel
+  std::vector<uint8_t> var;  // nv · kFragmentVaryingBytes per pixel
+  uint8_t* pixel(int x, int y) {
+    return &var[((size_t)y * (size_t)width + (size_t)x) * (size_t)nv * kFragmentVaryingBytes];
+  }
   void emit(const Fragment& f) override {
-    FxFloat* out = &var[((size_t)f.y * (size_t)width + (size_t)f.x) * (size_t)nv];
-    for (int k = 0; k < nv; ++k) out[k] = f.var[k];
+    if (nv == 0) return;
+    uint8_t rec[fragment_record_bytes(kMaxVaryings)];
+    for (int k = 0; k < nv; ++k) put_fragment_var(rec, k, f.var[k].sig, f.var[k].exp, f.var[k].neg);
+    std::memcpy(pixel(f.x, f.y), rec + kFragmentHeaderBytes, (size_t)nv * kFragmentVaryingBytes);
+  }
+  void emit_span(const FragmentRecords& b) override {  // b.num_varyings == nv (the draw's)
+    if (nv == 0) return;
+    const size_t stride = b.stride(), bytes = (size_t)nv * kFragmentVaryingBytes;
+    const uint8_t* r = b.data;
+    uint8_t* row = pixel(0, b.y(0));
+    for (size_t i = 0; i < b.count; ++i, r += stride) {
+      uint8_t* px = row + (size_t)fragment_word(r, 1) * bytes;
+      for (int k = 0; k < nv; ++k)  // word by word: fixed-size copies, no memcpy call
+        std::memcpy(px + (size_t)k * kFragmentVaryingBytes, r + kFragmentHeaderBytes + (size_t)k * kFragmentVaryingBytes,
+                    kFragmentVaryingBytes);
+    }
   }
 };
 
@@ -193,7 +214,8 @@ void BM_ModelStream(benchmark::State& state) {
   ImageSink sink;
   sink.width = s.st.viewport_x + s.st.viewport_w;
   sink.nv = s.st.num_varyings;
-  sink.var.assign((size_t)sink.width * (size_t)(s.st.viewport_y + s.st.viewport_h) * (size_t)sink.nv, FxFloat{});
+  sink.var.assign((size_t)sink.width * (size_t)(s.st.viewport_y + s.st.viewport_h) * (size_t)sink.nv *
+                      kFragmentVaryingBytes, 0);
   FrameOutput f;
   NoTaps taps;
   for (auto _ : state) {

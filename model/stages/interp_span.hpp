@@ -21,7 +21,10 @@
 // affine mode, default and other widths, 0–4 varyings; every counter below reached).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
+#include <vector>
 
 #include "model/arith/div.hpp"
 #include "model/arith/fixed.hpp"
@@ -29,6 +32,7 @@
 #include "model/stages/depth.hpp"
 #include "model/stages/divide.hpp"
 #include "model/stages/interp.hpp"
+#include "model/unit/fragment_store.hpp"
 #include "model/unit/io.hpp"
 
 namespace fxr {
@@ -55,8 +59,9 @@ class FusedSpan {
   };
   const Counts& counts() const { return counts_; }
 
-  // True when the divider stage would divide with div_sig_fast64 (the path this one reproduces).
-  static bool applies(const Config& cfg) { return div_fast64_ok(cfg.div); }
+  // True when the divider stage would divide with div_sig_fast64 (the path this one reproduces)
+  // and its significands fit the compact record (quot_bits ≤ kStoredSigBits).
+  static bool applies(const Config& cfg) { return div_fast64_ok(cfg.div) && cfg.div.quot_bits <= kStoredSigBits; }
 
   // with_varyings false: fragments without varyings, as InterpStage / DivideStage.
   FusedSpan(const Config& cfg, const DrawState& st, DepthBufferView buf, bool with_varyings = true)
@@ -70,22 +75,44 @@ class FusedSpan {
         default_widths_(widths_.w == DefaultWidths::w && widths_.nb == DefaultWidths::nb &&
                         widths_.db == DefaultWidths::db && widths_.qb == DefaultWidths::qb) {}
 
-  // Contract: stages 7–9 on span `sp` of `t`: emit(const Fragment&) for every pixel that passes
-  // the depth test, left to right, the same Fragment values (x, y, depth, prim, var[0 … nv−1])
-  // and the same depth-buffer writes as the staged chain; returns the number of passing pixels.
-  template <class Emit>
-  uint64_t run(const TriangleEquations& t, const Span& sp, Emit&& emit) {
+  // The varyings of each record run() writes (the draw's, or 0 without varyings).
+  int num_varyings() const { return nv_; }
+
+  // True when every exponent this triangle's fragments can have fits the compact record
+  // (|exp| ≤ kStoredExpMax, model/unit/fragment_store.hpp): the quotient's exponent is
+  // exp_adj + ne + num_exp − de − den_exp − (qb − 1) with |exp_adj| ≤ 1 and ne, de ≤ 127, the
+  // normalised sums' msb positions. The block exponents of any representable scene are far
+  // inside; a triangle outside this goes through the staged stages (FragmentChain::span).
+  bool fits(const TriangleEquations& t) const {
+    int64_t worst = 0;
+    for (int m = 0; m < nv_; ++m) worst = std::max<int64_t>(worst, std::abs((int64_t)t.interp.num_exp[m]));
+    return worst + std::abs((int64_t)t.interp.den_exp) + kExpSlack <= kStoredExpMax;
+  }
+
+  // Contract: stages 7–9 on span `sp` of `t` (fits(t)): the same passing pixels, depth-buffer
+  // writes and fragment values (x, y, depth, prim, var[0 … nv−1]) as the staged chain, left to
+  // right. out != nullptr: each passing pixel's fragment is written to `out` as a compact record
+  // of num_varyings() varyings (FragmentStore's layout; room for sp.x1 − sp.x0 + 1 records);
+  // nullptr: nothing is written (no sink). Returns the number of passing pixels.
+  uint64_t run(const TriangleEquations& t, const Span& sp, uint8_t* out) {
     ++counts_.spans;
-    f_.prim = t.prim;
-    f_.y = sp.y;
     const DepthStepper dz(t.depth, sp.x0, sp.y);
     const int64_t n = (int64_t)sp.x1 - sp.x0 + 1;
     if (nv_ > 0) {
       den_.start(t.interp.den, sp, dc_.den_bits);
       for (int m = 0; m < nv_; ++m) num_[m].start(t.interp.num[m], sp, dc_.num_bits);
     }
-    if (default_widths_) return run_z(t, sp, dz, n, DefaultWidths{}, emit);
-    return run_z(t, sp, dz, n, widths_, emit);
+    if (default_widths_) return run_z(t, sp, dz, n, DefaultWidths{}, out);
+    return run_z(t, sp, dz, n, widths_, out);
+  }
+  // The same handing each passing pixel's Fragment to emit(const Fragment&) (the tests).
+  template <class Emit>
+  uint64_t run(const TriangleEquations& t, const Span& sp, Emit&& emit) {
+    scratch_.resize((size_t)(sp.x1 - sp.x0 + 1) * fragment_record_bytes(nv_));
+    const uint64_t pass = run(t, sp, scratch_.data());
+    const FragmentRecords b{scratch_.data(), (size_t)pass, nv_};
+    for (size_t i = 0; i < b.count; ++i) emit(static_cast<const Fragment&>(b[i]));
+    return pass;
   }
 
  private:
@@ -95,30 +122,34 @@ class FusedSpan {
     int w, nb, db, qb;
   };
   static constexpr DivConfig kDefaultDiv{};
+  // Bound on |exp − num_exp + den_exp| (fits): |exp_adj| + 2·127 + (qb − 1 ≤ 62) < 2^9.
+  static constexpr int64_t kExpSlack = int64_t{1} << 9;
   struct DefaultWidths {
     static constexpr int nb = kDefaultDiv.num_bits, db = kDefaultDiv.den_bits, qb = kDefaultDiv.quot_bits;
     static constexpr int w = nb > db ? nb : db;  // div_align_bits
   };
 
-  template <class W, class Emit>
+  template <class W>
   uint64_t run_z(const TriangleEquations& t, const Span& sp, const DepthStepper& dz, int64_t n, const W& wd,
-                 Emit& emit) {
+                 uint8_t* out) {
     if (depth_step_fits64(dz, n)) {
       DepthStepperT<int64_t> z = narrow64(dz);
-      return run_nv(t, sp, z, wd, emit);
+      return run_nv(t, sp, z, wd, out);
     }
     ++counts_.spans_z128;
     DepthStepperT<i128> z = dz;
-    return run_nv(t, sp, z, wd, emit);
+    return run_nv(t, sp, z, wd, out);
   }
-  // The number of varyings as a constant for 0, 1 and 2 (the loop over them unrolled), else nv_.
-  template <class Z, class W, class Emit>
-  uint64_t run_nv(const TriangleEquations& t, const Span& sp, Z& z, const W& wd, Emit& emit) {
+  // The number of varyings as a constant for 0, 1 and 2 (the loop over them unrolled), else nv_;
+  // no output (no sink: only the depth test) as a constant too.
+  template <class Z, class W>
+  uint64_t run_nv(const TriangleEquations& t, const Span& sp, Z& z, const W& wd, uint8_t* out) {
+    if (!out) return loop<0, false>(t, sp, z, wd, out);
     switch (nv_) {
-      case 0: return loop<0>(t, sp, z, wd, emit);
-      case 1: return loop<1>(t, sp, z, wd, emit);
-      case 2: return loop<2>(t, sp, z, wd, emit);
-      default: return loop<-1>(t, sp, z, wd, emit);
+      case 0: return loop<0, true>(t, sp, z, wd, out);
+      case 1: return loop<1, true>(t, sp, z, wd, out);
+      case 2: return loop<2, true>(t, sp, z, wd, out);
+      default: return loop<-1, true>(t, sp, z, wd, out);
     }
   }
 
@@ -174,14 +205,16 @@ class FusedSpan {
     bool zero() const { return width == 1 && lo == 0; }
   };
 
-  template <int NV, class Z, class W, class Emit>
-  uint64_t loop(const TriangleEquations& t, const Span& sp, Z& z, const W& wd, Emit& emit) {
-    const int nv = NV >= 0 ? NV : nv_;
+  template <int NV, bool kOut, class Z, class W>
+  uint64_t loop(const TriangleEquations& t, const Span& sp, Z& z, const W& wd, uint8_t* out) {
+    const int nv = kOut ? (NV >= 0 ? NV : nv_) : 0;
+    const size_t stride = fragment_record_bytes(nv);
     uint32_t* codes = test_ ? buf_.codes + ((size_t)(sp.y - buf_.y0) * (size_t)buf_.width +
                                             (size_t)((int64_t)sp.x0 - buf_.x0))
                             : nullptr;
     const int64_t x0 = sp.x0;
     const int ed = t.interp.den_exp, qb1 = wd.qb - 1;
+    uint8_t* rec = out;
     uint64_t pass_count = 0;
     int64_t i = sp.x0;
     while (i <= sp.x1) {
@@ -206,13 +239,12 @@ class FusedSpan {
           pass = (mask_ >> depth_relation(code, stored)) & 1u;
           if (pass && write_) stored = code;
         }
-        if (pass) {
-          ++pass_count;
-          f_.x = (int32_t)i;
-          f_.depth = code;
+        pass_count += pass ? 1 : 0;
+        if (kOut && pass) {
+          put_fragment_header(rec, t.prim, (int32_t)i, sp.y, code);
           if (nv > 0) {
             if (!den_pos) {  // D ≤ 0: every varying 0 (divide_varying)
-              for (int m = 0; m < nv; ++m) f_.var[m] = FxFloat{};
+              for (int m = 0; m < nv; ++m) put_fragment_var(rec, m, 0, 0, false);
             } else {
               int de;
               const uint64_t d = den_.norm.sig_bits(den_.mag, de, wd.db);
@@ -220,21 +252,18 @@ class FusedSpan {
               const uint64_t R = div_recip64_w(wd.w, wd.db, d);
               for (int m = 0; m < nv; ++m) {
                 const Sum& s = num_[m];
-                FxFloat& out = f_.var[m];
                 if (lane_zero && s.zero()) {
-                  out = FxFloat{};
+                  put_fragment_var(rec, m, 0, 0, false);
                   continue;
                 }
                 int ne;
                 const uint64_t a = s.norm.sig_bits(s.mag, ne, wd.nb);
                 const DivSig q = div_sig_recip64_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
-                out.neg = s.neg;
-                out.sig = q.sig;
-                out.exp = q.exp_adj + (ne + t.interp.num_exp[m]) - de - qb1;
+                put_fragment_var(rec, m, q.sig, q.exp_adj + (ne + t.interp.num_exp[m]) - de - qb1, s.neg);
               }
             }
           }
-          emit(static_cast<const Fragment&>(f_));
+          rec += stride;
         }
         z.step_x();
         if (nv > 0) {
@@ -256,7 +285,7 @@ class FusedSpan {
   Sum den_;
   Sum num_[kMaxVaryings];
   Counts counts_;
-  Fragment f_;
+  std::vector<uint8_t> scratch_;  // run(…, emit)'s records
 };
 
 }  // namespace fxr

@@ -28,13 +28,25 @@ void frame_check(const Config& cfg, const DrawState& st);
 SetupOutcome raster_triangle(const Config& cfg, const DrawState& st, const SetupTriangle& tri, FrameOutput& f,
                              bool keep_fragments = true);
 
-// Receives the fragments that pass the depth test, one at a time, in the unit's order (rows
-// bottom to top, left to right within a row). The Fragment is only valid during the call;
-// var[k] is set for k < num_varyings only.
+// Receives the fragments that pass the depth test in the unit's order (rows bottom to top, left
+// to right within a row): one at a time (emit), or a span's passing fragments at once
+// (emit_span: the fused span path of FragmentChain, model/stages/interp_span.hpp). The Fragment
+// and the records are only valid during the call; var[k] is set for k < num_varyings only.
 class FragmentSink {
  public:
   virtual ~FragmentSink() = default;
   virtual void emit(const Fragment& f) = 0;
+  // The passing fragments of one span (one row, x increasing, not necessarily adjacent) as
+  // compact records (model/unit/fragment_store.hpp) of the chain's num_varyings: the same
+  // fragments, in the same order, as that many emit calls — which is what the default does. A
+  // sink that can take them in bulk overrides it (docs/speed.md "Session 8: the span path").
+  virtual void emit_span(const FragmentRecords& b) {
+    Fragment f;
+    for (size_t i = 0; i < b.count; ++i) {
+      get_fragment(b.record(i), b.num_varyings, f);
+      emit(f);
+    }
+  }
   // Called once by each chain that will emit into the sink (triangles, then line segments, whose
   // draw state may have more varyings), before its first emit.
   virtual void draw_state(const DrawState&) {}
@@ -46,6 +58,7 @@ class KeepFragments final : public FragmentSink {
  public:
   explicit KeepFragments(FragmentStore& out) : out_(out) {}
   void emit(const Fragment& f) override { out_.push_back(f); }
+  void emit_span(const FragmentRecords& b) override { out_.append(b); }  // one copy
   void draw_state(const DrawState& st) override { out_.widen(st.num_varyings); }
 
  private:

@@ -204,12 +204,18 @@ class FragmentChain {
       stats_.fragments_depth_pass += (uint64_t)(sp.x1 - sp.x0 + 1);
       return;
     }
-    if (use_fused_) {  // no tap: stages 7–9 in one loop (model/stages/interp_span.hpp)
-      const uint64_t pass = fused_.run(eq, sp, [&](const Fragment& fr) {
-        if (sink_) sink_->emit(fr);
-      });
+    if (use_fused_ && fused_.fits(eq)) {  // no tap: stages 7–9 in one loop (model/stages/interp_span.hpp)
+      const uint64_t n = (uint64_t)(sp.x1 - sp.x0 + 1);
+      uint8_t* rec = nullptr;
+      if (sink_) {  // the span's passing fragments as records, to the sink in one call
+        const size_t need = (size_t)n * fragment_record_bytes(fused_.num_varyings());
+        if (records_.size() < need) records_.resize(need);
+        rec = records_.data();
+      }
+      const uint64_t pass = fused_.run(eq, sp, rec);
+      if (sink_ && pass) sink_->emit_span(FragmentRecords{rec, (size_t)pass, fused_.num_varyings()});
       stats_.fragments_depth_pass += pass;
-      stats_.fragments_depth_fail += (uint64_t)(sp.x1 - sp.x0 + 1) - pass;
+      stats_.fragments_depth_fail += n - pass;
       return;
     }
     taps_.template in<InterpStage>(sp);
@@ -244,6 +250,7 @@ class FragmentChain {
   bool count_only_;
   FusedSpan fused_;
   bool use_fused_;  // NoTaps and FusedSpan::applies: span() takes the fused stages 7–9
+  std::vector<uint8_t> records_;  // the fused span's records, handed to sink_->emit_span
 };
 
 // The primitive accounting of run_raster_unit. count_geometry: a primitive that left the

@@ -31,7 +31,68 @@ inline constexpr int kFragmentHeaderWords = 4;
 inline constexpr int kFragmentHeaderBytes = kFragmentHeaderWords * 4;
 // One varying: significand (32 bits), exponent·2 + sign (32 bits, two's complement).
 inline constexpr int kStoredSigBits = 32;
+inline constexpr int kStoredExpBits = 31;  // the exponent's field: [−2^30, 2^30 − 1]
+inline constexpr int kStoredExpMax = (1 << (kStoredExpBits - 1)) - 1;
 inline constexpr int kFragmentVaryingBytes = 8;
+
+// The record of a fragment with `num_varyings` varyings, in bytes.
+inline constexpr size_t fragment_record_bytes(int num_varyings) {
+  return (size_t)kFragmentHeaderBytes + (size_t)num_varyings * kFragmentVaryingBytes;
+}
+// Writing and reading one record (the store's and the fused span's writer, model/stages/
+// interp_span.hpp, share these). put_* do not check: the caller knows sig < 2^kStoredSigBits and
+// |exp| ≤ kStoredExpMax (fragment_var_storable).
+inline bool fragment_var_storable(uint64_t sig, int exp) {
+  return (sig >> kStoredSigBits) == 0 && exp <= kStoredExpMax && exp >= -kStoredExpMax - 1;
+}
+inline void put_fragment_header(uint8_t* rec, uint32_t prim, int32_t x, int32_t y, uint32_t depth) {
+  const uint32_t h[kFragmentHeaderWords] = {prim, (uint32_t)x, (uint32_t)y, depth};
+  std::memcpy(rec, h, sizeof h);
+}
+inline void put_fragment_var(uint8_t* rec, int k, uint64_t sig, int exp, bool neg) {
+  const uint32_t w[2] = {(uint32_t)sig, ((uint32_t)exp << 1) | (uint32_t)neg};
+  std::memcpy(rec + kFragmentHeaderBytes + (size_t)k * kFragmentVaryingBytes, w, sizeof w);
+}
+inline uint32_t fragment_word(const uint8_t* rec, int w) {
+  uint32_t v;
+  std::memcpy(&v, rec + (size_t)w * 4, 4);
+  return v;
+}
+inline FxFloat get_fragment_var(const uint8_t* rec, int k) {
+  uint32_t w[2];
+  std::memcpy(w, rec + kFragmentHeaderBytes + (size_t)k * kFragmentVaryingBytes, sizeof w);
+  FxFloat v;
+  v.sig = w[0];
+  v.neg = (w[1] & 1u) != 0;
+  v.exp = (int32_t)w[1] >> 1;  // arithmetic shift (C++20 defines it; every C++17 target here does)
+  return v;
+}
+// Decodes a record into f (var[k] for k < num_varyings; the others are left as they are).
+inline void get_fragment(const uint8_t* rec, int num_varyings, Fragment& f) {
+  uint32_t h[kFragmentHeaderWords];
+  std::memcpy(h, rec, sizeof h);
+  f.prim = h[0], f.x = (int32_t)h[1], f.y = (int32_t)h[2], f.depth = h[3];
+  for (int k = 0; k < num_varyings; ++k) f.var[k] = get_fragment_var(rec, k);
+}
+
+// A block of consecutive records (fragments of one span, in order: FragmentSink::emit_span,
+// model/unit/backend.hpp), not owned.
+struct FragmentRecords {
+  const uint8_t* data = nullptr;
+  size_t count = 0;
+  int num_varyings = 0;
+
+  size_t stride() const { return fragment_record_bytes(num_varyings); }
+  const uint8_t* record(size_t i) const { return data + i * stride(); }
+  int32_t x(size_t i) const { return (int32_t)fragment_word(record(i), 1); }
+  int32_t y(size_t i) const { return (int32_t)fragment_word(record(i), 2); }
+  uint32_t depth(size_t i) const { return fragment_word(record(i), 3); }
+  Fragment operator[](size_t i) const {
+    Fragment f;
+    get_fragment(record(i), num_varyings, f);
+    return f;
+  }
+};
 
 class FragmentStore {
  public:
@@ -65,7 +126,7 @@ class FragmentStore {
     if (num_varyings < 0 || num_varyings > kMaxVaryings)
       throw std::invalid_argument("FragmentStore: num_varyings " + std::to_string(num_varyings) + " outside 0.." +
                                   std::to_string(kMaxVaryings));
-    const size_t stride = (size_t)kFragmentHeaderBytes + (size_t)num_varyings * kFragmentVaryingBytes;
+    const size_t stride = fragment_record_bytes(num_varyings);
     if (stride != stride_) cap_ = cap_ * stride_ / stride;  // the same bytes, counted in new records
     nv_ = num_varyings;
     stride_ = stride;
@@ -99,16 +160,28 @@ class FragmentStore {
   void push_back(const Fragment& f) {
     if (n_ == cap_) grow_to(n_ + 1);
     uint8_t* p = buf_ + n_ * stride_;
-    const uint32_t h[kFragmentHeaderWords] = {f.prim, (uint32_t)f.x, (uint32_t)f.y, f.depth};
-    std::memcpy(p, h, sizeof h);
-    p += kFragmentHeaderBytes;
-    for (int k = 0; k < nv_; ++k, p += kFragmentVaryingBytes) {
+    put_fragment_header(p, f.prim, f.x, f.y, f.depth);
+    for (int k = 0; k < nv_; ++k) {
       const FxFloat& v = f.var[k];
-      if ((v.sig >> kStoredSigBits) != 0 || v.exp > kMaxExp || v.exp < -kMaxExp - 1) unstorable(v);
-      const uint32_t w[2] = {(uint32_t)v.sig, (uint32_t)(v.exp * 2) | (uint32_t)v.neg};
-      std::memcpy(p, w, sizeof w);
+      if (!fragment_var_storable(v.sig, v.exp)) unstorable(v);
+      put_fragment_var(p, k, v.sig, v.exp, v.neg);
     }
     ++n_;
+  }
+
+  // Contract: appends the block's records in order. The same num_varyings: one copy (the
+  // records are taken as they are: their writer checked fragment_var_storable); fewer: each
+  // record widened (extra varyings 0, as push_back of its Fragment); more: std::logic_error.
+  void append(const FragmentRecords& b) {
+    if (b.num_varyings == nv_) {
+      reserve(n_ + b.count);
+      if (b.count) std::memcpy(buf_ + n_ * stride_, b.data, b.count * stride_);
+      n_ += b.count;
+      return;
+    }
+    if (b.num_varyings > nv_) throw std::logic_error("FragmentStore::append: a block with more varyings than the store");
+    reserve(n_ + b.count);
+    for (size_t i = 0; i < b.count; ++i) push_back(b[i]);
   }
 
   // Contract: appends records [first, first + count) of `o` (same num_varyings) in one copy.
@@ -137,22 +210,11 @@ class FragmentStore {
   int32_t x(size_t i) const { return (int32_t)word(i, 1); }
   int32_t y(size_t i) const { return (int32_t)word(i, 2); }
   uint32_t depth(size_t i) const { return word(i, 3); }
-  FxFloat var(size_t i, int k) const {
-    uint32_t w[2];
-    std::memcpy(w, buf_ + i * stride_ + kFragmentHeaderBytes + (size_t)k * kFragmentVaryingBytes, sizeof w);
-    FxFloat v;
-    v.sig = w[0];
-    v.neg = (w[1] & 1u) != 0;
-    v.exp = (int32_t)w[1] >> 1;  // arithmetic shift (C++20 defines it; every C++17 target here does)
-    return v;
-  }
+  FxFloat var(size_t i, int k) const { return get_fragment_var(buf_ + i * stride_, k); }
 
   Fragment operator[](size_t i) const {
     Fragment f;
-    uint32_t h[kFragmentHeaderWords];
-    std::memcpy(h, buf_ + i * stride_, sizeof h);
-    f.prim = h[0], f.x = (int32_t)h[1], f.y = (int32_t)h[2], f.depth = h[3];
-    for (int k = 0; k < nv_; ++k) f.var[k] = var(i, k);
+    get_fragment(buf_ + i * stride_, nv_, f);
     return f;
   }
   Fragment at(size_t i) const {
@@ -195,13 +257,7 @@ class FragmentStore {
   std::vector<Fragment> to_vector() const { return std::vector<Fragment>(begin(), end()); }
 
  private:
-  static constexpr int kMaxExp = (1 << 30) - 1;
-
-  uint32_t word(size_t i, int w) const {
-    uint32_t v;
-    std::memcpy(&v, buf_ + i * stride_ + (size_t)w * 4, 4);
-    return v;
-  }
+  uint32_t word(size_t i, int w) const { return fragment_word(buf_ + i * stride_, w); }
   [[noreturn]] static void unstorable(const FxFloat& v);
   void grow_to(size_t n) {
     if (stride_ == 0) throw std::logic_error("FragmentStore: push before shape()");

@@ -303,3 +303,74 @@ TEST(FusedSpan, TheChainTakesItOnlyWithoutTapsAndGivesTheSameFrame) {
     EXPECT_EQ(fa.stats.fragments_generated, fb.stats.fragments_generated) << nv;
   }
 }
+
+TEST(FusedSpan, SpanRecordsReachEverySinkAsTheSameFragments) {
+  // The fused chain hands a span's passing fragments to FragmentSink::emit_span as compact
+  // records: KeepFragments appends them in one copy (or widens each when its store has more
+  // varyings), a sink without emit_span gets them one by one (the default). Each must hold the
+  // fragments of the staged chain (observed by a tap: emit per fragment), in order.
+  struct Spans : FragmentSink {  // KeepFragments' bulk append, counting the blocks
+    FragmentStore s;
+    uint64_t blocks = 0, records = 0;
+    void draw_state(const DrawState& st) override { s.widen(st.num_varyings); }
+    void emit(const Fragment& f) override { s.push_back(f); }
+    void emit_span(const FragmentRecords& b) override {
+      ++blocks, records += b.count;
+      s.append(b);
+    }
+  };
+  struct OneByOne : FragmentSink {  // only emit: the default emit_span decodes
+    FragmentStore s;
+    void draw_state(const DrawState& st) override { s.widen(st.num_varyings); }
+    void emit(const Fragment& f) override { s.push_back(f); }
+  };
+  for (int nv : {0, 1, 2, 3}) {
+    const DrawState st = viewport_state(nv);
+    std::vector<ClipTriangle> tris = random_tris(177 + nv, 60, nv);
+    for (const ClipTriangle& t : grazing_plane(nv, 30.0f)) tris.push_back(t);
+    Config cfg;
+    FrameOutput f_staged, f_spans, f_one, f_wide, f_keep;
+    Spans staged, spans, wide;
+    OneByOne one;
+    FragmentStore kept;
+    KeepFragments keep(kept);
+    staged.s.shape(nv), spans.s.shape(nv), one.s.shape(nv), kept.shape(nv);
+    wide.s.shape(nv + 1);  // more varyings than the draw: each record widened
+    NoTaps none;
+    Observe obs;
+    run_raster_unit_to(cfg, st, tris, f_staged, &staged, obs);
+    run_raster_unit_to(cfg, st, tris, f_spans, &spans, none);
+    run_raster_unit_to(cfg, st, tris, f_one, &one, none);
+    run_raster_unit_to(cfg, st, tris, f_wide, &wide, none);
+    run_raster_unit_to(cfg, st, tris, f_keep, &keep, none);
+    EXPECT_EQ(staged.blocks, 0u);       // the staged chain emits one at a time
+    EXPECT_GT(spans.blocks, 100u) << nv;  // the fused chain per span
+    EXPECT_EQ(spans.records, spans.s.size());
+    ASSERT_GT(staged.s.size(), 1000u) << nv;
+    for (const FragmentStore* got : {&spans.s, &one.s, &wide.s, &kept}) {
+      ASSERT_EQ(got->size(), staged.s.size()) << nv;
+      uint64_t bad = 0;
+      for (size_t i = 0; i < got->size(); ++i) {
+        const Fragment a = staged.s[i], b = (*got)[i];
+        bad += same_fragment(a, b, nv) ? 0 : 1;
+        if (got == &wide.s) bad += b.var[nv].sig == 0 && b.var[nv].exp == 0 && !b.var[nv].neg ? 0 : 1;
+      }
+      EXPECT_EQ(bad, 0u) << nv;
+    }
+    EXPECT_EQ(wide.s.num_varyings(), nv + 1);
+    for (const FrameOutput* f : {&f_spans, &f_one, &f_wide, &f_keep}) {
+      EXPECT_TRUE(f->depth == f_staged.depth) << nv;
+      EXPECT_EQ(f->stats.fragments_depth_pass, f_staged.stats.fragments_depth_pass) << nv;
+      EXPECT_EQ(f->stats.fragments_depth_fail, f_staged.stats.fragments_depth_fail) << nv;
+    }
+  }
+}
+
+TEST(FusedSpan, RecordsWithMoreVaryingsThanTheStoreAreRefused) {
+  FragmentStore s(1);
+  uint8_t rec[fragment_record_bytes(2)] = {};
+  EXPECT_THROW(s.append(FragmentRecords{rec, 1, 2}), std::logic_error);
+  EXPECT_NO_THROW(s.append(FragmentRecords{rec, 1, 1}));
+  EXPECT_NO_THROW(s.append(FragmentRecords{rec, 1, 0}));
+  EXPECT_EQ(s.size(), 2u);
+}
