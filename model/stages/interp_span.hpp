@@ -4,7 +4,9 @@
 //
 // The same values as InterpStage::step → DepthStage::step → DivideStage::step, computed with the
 // work that is constant along a span done once per span or per segment of it:
-//   - the depth code stepped in int64_t where depth_step_fits64 proves it (as InterpStage);
+//   - the depth code stepped in int64_t where depth_step_fits64 proves it (as InterpStage), else
+//     one value where the codes at both ends of the span are equal (the code is monotone), else
+//     stepped in i128;
 //   - the depth function as a 3-bit mask of its answers to <, =, > (from depth_compare itself);
 //   - the plane sums D and N_m, affine in x, hence monotone along the span, as sign and magnitude
 //     (the magnitude stepped directly: −N by −dN); the span is cut into segments where every
@@ -48,11 +50,28 @@ inline unsigned depth_relation(uint32_t incoming, uint32_t stored) {
   return (unsigned)(incoming >= stored) + (unsigned)(incoming > stored);
 }
 
+// The depth code at pixel (i, j) computed directly (DepthStepper's first division, rounding and
+// clamp).
+inline uint32_t depth_code_at(const DepthSetup& s, int i, int j) {
+  DepthStepperT<i128> z;
+  z.den = s.den;
+  z.max_code = s.max_code;
+  floor_divmod(s.z.at(i, j), s.den, z.q, z.r);
+  return z.code();
+}
+// A depth code that is one value over a span (FusedSpan's range test): nothing to step.
+struct DepthConstant {
+  uint32_t c = 0;
+  void step_x() {}
+  uint32_t code() const { return c; }
+};
+
 class FusedSpan {
  public:
   // What the fast path met (the tests check that every case was reached).
   struct Counts {
-    uint64_t spans = 0, spans_z128 = 0;  // spans; of them stepped in i128 (else int64_t)
+    uint64_t spans = 0, spans_z128 = 0;  // spans; of them stepped in i128 (else int64_t or constant)
+    uint64_t spans_zconst = 0;           // spans not fitting int64_t whose depth code is one value
     uint64_t segments = 0;               // segments (> spans: some sum left its binade)
     uint64_t exits_divided = 0;          // segment ends found by the exit division
     uint64_t sign_changes = 0;           // a sum re-armed with the other sign
@@ -133,17 +152,28 @@ class FusedSpan {
   uint64_t run_z(const TriangleEquations& t, const Span& sp, const DepthStepper& dz, int64_t n, const W& wd,
                  uint8_t* out) {
     if (depth_step_fits64(dz, n)) {
-      DepthStepperT<int64_t> z = narrow64(dz);
+      const DepthStepperT<int64_t> z = narrow64(dz);
+      return run_nv(t, sp, z, wd, out);
+    }
+    // The range test fitted to the depth plane (docs/speed.md "Session 8: the span path"): along
+    // a span Z is affine in x, RNE(Z / den) and the clamp are monotone, so the code is monotone
+    // and equal codes at the two ends make it one value over the span — then nothing is stepped.
+    // The grazing plane's spans take it (Z constant along a row, den ≈ 2^71–2^75: the int64
+    // stepping cannot hold r); a span whose code changes takes the i128 stepper.
+    const uint32_t c0 = dz.code();
+    if (depth_code_at(t.depth, sp.x1, sp.y) == c0) {
+      ++counts_.spans_zconst;
+      const DepthConstant z{c0};
       return run_nv(t, sp, z, wd, out);
     }
     ++counts_.spans_z128;
-    DepthStepperT<i128> z = dz;
+    const DepthStepperT<i128> z = dz;
     return run_nv(t, sp, z, wd, out);
   }
   // The number of varyings as a constant for 0, 1 and 2 (the loop over them unrolled), else nv_;
   // no output (no sink: only the depth test) as a constant too.
   template <class Z, class W>
-  uint64_t run_nv(const TriangleEquations& t, const Span& sp, Z& z, const W& wd, uint8_t* out) {
+  uint64_t run_nv(const TriangleEquations& t, const Span& sp, const Z& z, const W& wd, uint8_t* out) {
     if (!out) return loop<0, false>(t, sp, z, wd, out);
     switch (nv_) {
       case 0: return loop<0, true>(t, sp, z, wd, out);
@@ -206,20 +236,31 @@ class FusedSpan {
   };
 
   template <int NV, bool kOut, class Z, class W>
-  uint64_t loop(const TriangleEquations& t, const Span& sp, Z& z, const W& wd, uint8_t* out) {
+  uint64_t loop(const TriangleEquations& t, const Span& sp, const Z& z_start, const W& wd, uint8_t* out) {
     const int nv = kOut ? (NV >= 0 ? NV : nv_) : 0;
     const size_t stride = fragment_record_bytes(nv);
-    uint32_t* codes = test_ ? buf_.codes + ((size_t)(sp.y - buf_.y0) * (size_t)buf_.width +
-                                            (size_t)((int64_t)sp.x0 - buf_.x0))
-                            : nullptr;
-    const int64_t x0 = sp.x0;
+    // Everything the pixel loop reads is a local: the records are written through a byte
+    // pointer, which may alias any member or the triangle, so members would be stored and
+    // reloaded at every pixel.
+    constexpr int kN = NV > 0 ? NV : NV == 0 ? 1 : kMaxVaryings;
+    uint32_t* const codes = test_ ? buf_.codes + ((size_t)(sp.y - buf_.y0) * (size_t)buf_.width +
+                                                  (size_t)((int64_t)sp.x0 - buf_.x0))
+                                  : nullptr;
+    const unsigned mask = mask_;
+    const bool write = write_;
+    const uint32_t prim = t.prim;
+    const int32_t y = sp.y;
+    const int64_t x0 = sp.x0, x1 = sp.x1;
     const int ed = t.interp.den_exp, qb1 = wd.qb - 1;
+    int nexp[kN];
+    for (int m = 0; m < nv; ++m) nexp[m] = t.interp.num_exp[m] - qb1;
+    Z z = z_start;
     uint8_t* rec = out;
     uint64_t pass_count = 0;
-    int64_t i = sp.x0;
-    while (i <= sp.x1) {
+    int64_t i = x0;
+    while (i <= x1) {
       // A segment of pixels where every sum keeps its sign and binade.
-      int64_t len = (int64_t)sp.x1 - i + 1;
+      int64_t len = x1 - i + 1;
       bool den_pos = true, lane_zero = false;
       if (nv > 0) {
         len = den_.run_length(len, counts_);
@@ -230,36 +271,45 @@ class FusedSpan {
         }
       }
       ++counts_.segments;
+      u128 dmag = den_.mag;
+      const u128 dstep = den_.step;
+      const NormalizeAtMsb dnorm = den_.norm;
+      u128 nmag[kN], nstep[kN];
+      NormalizeAtMsb nnorm[kN];
+      bool nneg[kN], nzero[kN];
+      for (int m = 0; m < nv; ++m) {
+        nmag[m] = num_[m].mag, nstep[m] = num_[m].step, nnorm[m] = num_[m].norm;
+        nneg[m] = num_[m].neg, nzero[m] = lane_zero && num_[m].zero();
+      }
       const int64_t end = i + len;
       for (; i < end; ++i) {
         const uint32_t code = z.code();
         bool pass = true;
         if (codes) {
           uint32_t& stored = codes[i - x0];
-          pass = (mask_ >> depth_relation(code, stored)) & 1u;
-          if (pass && write_) stored = code;
+          pass = (mask >> depth_relation(code, stored)) & 1u;
+          if (pass && write) stored = code;
         }
         pass_count += pass ? 1 : 0;
         if (kOut && pass) {
-          put_fragment_header(rec, t.prim, (int32_t)i, sp.y, code);
+          put_fragment_header(rec, prim, (int32_t)i, y, code);
           if (nv > 0) {
             if (!den_pos) {  // D ≤ 0: every varying 0 (divide_varying)
               for (int m = 0; m < nv; ++m) put_fragment_var(rec, m, 0, 0, false);
             } else {
               int de;
-              const uint64_t d = den_.norm.sig_bits(den_.mag, de, wd.db);
+              const uint64_t d = dnorm.sig_bits(dmag, de, wd.db);
               de += ed;
               const uint64_t R = div_recip64_w(wd.w, wd.db, d);
               for (int m = 0; m < nv; ++m) {
-                const Sum& s = num_[m];
-                if (lane_zero && s.zero()) {
+                if (nzero[m]) {
                   put_fragment_var(rec, m, 0, 0, false);
                   continue;
                 }
                 int ne;
-                const uint64_t a = s.norm.sig_bits(s.mag, ne, wd.nb);
+                const uint64_t a = nnorm[m].sig_bits(nmag[m], ne, wd.nb);
                 const DivSig q = div_sig_recip64_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
-                put_fragment_var(rec, m, q.sig, q.exp_adj + (ne + t.interp.num_exp[m]) - de - qb1, s.neg);
+                put_fragment_var(rec, m, q.sig, q.exp_adj + ne + nexp[m] - de, nneg[m]);
               }
             }
           }
@@ -267,9 +317,13 @@ class FusedSpan {
         }
         z.step_x();
         if (nv > 0) {
-          den_.mag += den_.step;
-          for (int m = 0; m < nv; ++m) num_[m].mag += num_[m].step;
+          dmag += dstep;
+          for (int m = 0; m < nv; ++m) nmag[m] += nstep[m];
         }
+      }
+      if (nv > 0) {
+        den_.mag = dmag;
+        for (int m = 0; m < nv; ++m) num_[m].mag = nmag[m];
       }
     }
     return pass_count;

@@ -23,6 +23,7 @@
 #include "model/unit/chain.hpp"
 #include "model/unit/fragment_store.hpp"
 #include "model/unit/geometry.hpp"
+#include "tests/model/geom_ref.hpp"
 
 using namespace fxr;
 
@@ -164,7 +165,7 @@ Config widths_config(int nb, int db, int qb) {
 }
 
 void add(FusedSpan::Counts& a, const FusedSpan::Counts& b) {
-  a.spans += b.spans, a.spans_z128 += b.spans_z128, a.segments += b.segments;
+  a.spans += b.spans, a.spans_z128 += b.spans_z128, a.spans_zconst += b.spans_zconst, a.segments += b.segments;
   a.exits_divided += b.exits_divided, a.sign_changes += b.sign_changes;
 }
 
@@ -373,4 +374,117 @@ TEST(FusedSpan, RecordsWithMoreVaryingsThanTheStoreAreRefused) {
   EXPECT_NO_THROW(s.append(FragmentRecords{rec, 1, 1}));
   EXPECT_NO_THROW(s.append(FragmentRecords{rec, 1, 0}));
   EXPECT_EQ(s.size(), 2u);
+}
+
+namespace {
+
+mpz_class mpz_of(i128 v) {
+  const bool neg = v < 0;
+  const u128 m = neg ? (u128)0 - (u128)v : (u128)v;
+  mpz_class z = mpz_class((unsigned long)(uint64_t)(m >> 64));
+  z <<= 64;
+  z += mpz_class((unsigned long)(uint64_t)m);
+  return neg ? mpz_class(-z) : z;
+}
+
+// The code at (i, j) from its definition, in GMP: clamp(RNE(Z(i, j) / den), 0, max_code).
+uint32_t ref_code(const DepthSetup& s, int i, int j) {
+  const mpz_class z = mpz_of(s.z.c) + mpz_class(i - s.z.i0) * mpz_of(s.z.dx) + mpz_class(j - s.z.j0) * mpz_of(s.z.dy);
+  mpq_class q(z, mpz_of(s.den));
+  q.canonicalize();
+  mpz_class c = georef::rne_int(q);
+  if (c < 0) c = 0;
+  if (c > mpz_of(s.max_code)) c = mpz_of(s.max_code);
+  return (uint32_t)c.get_ui();
+}
+
+// A nearly level plane: z/w varies by `slope` across the screen in x, so the code is one value
+// over many spans and changes inside others.
+std::vector<ClipTriangle> level_plane(int nv, float slope) {
+  std::vector<ClipTriangle> v = grazing_plane(nv, 20.0f);
+  for (ClipTriangle& t : v)
+    for (ClipVertex& c : t.v) c.pos[2] = (0.5f + slope * c.pos[0] / c.pos[3]) * c.pos[3];
+  return v;
+}
+
+}  // namespace
+
+TEST(FusedSpan, EqualEndCodesMeanOneCodeOverTheSpan) {
+  // The range test of the wide depth path: the codes at both ends of a span equal ⇒ every code
+  // of the span equals them (the code is monotone along x). Random depth planes with den of
+  // 2^40–2^100 and slopes giving 0 to a few code changes per span, each span's every code from
+  // the definition (GMP); then directed ties at the span end (Z/den = c + ½ exactly: c even
+  // rounds down — one code; c odd rounds up — two), and the clamps at 0 and max_code.
+  std::mt19937_64 rng(2026);
+  uint64_t one = 0, several = 0;
+  auto check = [&](const DepthSetup& s, int x0, int x1, int y) {
+    const DepthStepper dz(s, x0, y);
+    const uint32_t c0 = dz.code();
+    ASSERT_EQ(c0, ref_code(s, x0, y));
+    ASSERT_EQ(depth_code_at(s, x1, y), ref_code(s, x1, y));
+    const bool constant = depth_code_at(s, x1, y) == c0;
+    bool all_equal = true;
+    for (int i = x0; i <= x1; ++i) all_equal = all_equal && ref_code(s, i, y) == c0;
+    EXPECT_EQ(constant, all_equal) << "den 2^" << msb_index((u128)s.den) << " x " << x0 << ".." << x1;
+    (constant ? one : several) += 1;
+  };
+  for (int k = 0; k < 3000; ++k) {
+    DepthSetup s;
+    const int db = 40 + (int)(rng() % 61);
+    s.den = ((i128)1 << db) + (i128)(rng() >> 4);
+    s.max_code = (1 << 24) - 1;
+    const int n = 1 + (int)(rng() % 300), x0 = (int)(rng() % 500) - 100, y = (int)(rng() % 300);
+    const i128 code0 = (i128)(rng() % (1u << 24));
+    s.z.c = code0 * s.den + (i128)(rng() % (uint64_t)1e18) * (s.den >> 60 > 0 ? s.den >> 60 : 1);
+    // 0 to ~3 code changes over the span, either direction.
+    const int64_t changes = (int64_t)(rng() % 4);
+    const i128 slope = changes == 0 ? 0 : (s.den * changes) / (i128)(n * (1 + (int)(rng() % 3)));
+    s.z.dx = rng() % 2 ? slope : -slope;
+    s.z.dy = (i128)(rng() >> 8);
+    s.z.c -= (i128)x0 * s.z.dx + (i128)y * s.z.dy;  // the code near code0 at the span start
+    check(s, x0, x0 + n - 1, y);
+  }
+  EXPECT_GT(one, 500u);
+  EXPECT_GT(several, 500u);
+  // Ties at the span's end: Z(x1)/den = c + ½ with c even (RNE keeps c) and odd (c + 1).
+  for (int c : {1000, 1001, 0, 1}) {
+    DepthSetup s;
+    s.den = (i128)1 << 80;
+    s.max_code = (1 << 24) - 1;
+    const int n = 64;
+    s.z.dx = s.den / (4 * (n - 1));                          // about ¼ code over the span
+    s.z.c = (i128)c * s.den + s.den / 2 - (n - 1) * s.z.dx;  // from ≈ c + ¼ up to c + ½ exactly
+    ASSERT_EQ(s.z.at(n - 1, 0), (i128)c * s.den + s.den / 2);
+    check(s, 0, n - 1, 0);
+    const bool constant = depth_code_at(s, n - 1, 0) == DepthStepper(s, 0, 0).code();
+    EXPECT_EQ(constant, c % 2 == 0) << c;
+  }
+  // Clamps: both ends beyond max_code (or below 0) with different unclamped values.
+  for (int side : {-1, 1}) {
+    DepthSetup s;
+    s.den = (i128)1 << 90;
+    s.max_code = (1 << 24) - 1;
+    s.z.c = side > 0 ? (s.max_code + 5) * s.den : -5 * s.den;
+    s.z.dx = side * s.den;  // one code per pixel, away from the range
+    check(s, 0, 40, 0);
+    EXPECT_EQ(depth_code_at(s, 40, 0), side > 0 ? (uint32_t)s.max_code : 0u);
+  }
+}
+
+TEST(FusedSpan, WideDepthSpansWithOneCodeOrSteppedEqualTheStagedPath) {
+  // Nearly level planes: the depth plane's den is beyond int64 stepping, the code is one value
+  // over some spans (no stepping) and changes inside others (the i128 stepper); both against
+  // the staged stages, with 0 and 2 varyings, under two depth functions.
+  FusedSpan::Counts total;
+  for (float slope : {0.0f, 1e-7f, 3e-6f, 1e-4f})
+    for (int nv : {0, 2})
+      for (DepthFunc fn : {DepthFunc::Less, DepthFunc::GreaterEqual}) {
+        DrawState st = viewport_state(nv);
+        st.depth_func = fn;
+        std::vector<ClipTriangle> tris = level_plane(nv, slope);
+        for (const ClipTriangle& t : level_plane(nv, -slope)) tris.push_back(t);
+        add(total, compare(Config{}, st, tris, "level plane slope " + std::to_string(slope)));
+      }
+  EXPECT_GT(total.spans_zconst, 100u);
+  EXPECT_GT(total.spans_z128, 10u);
 }
