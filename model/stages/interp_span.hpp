@@ -273,13 +273,12 @@ class FusedSpan {
       ++counts_.segments;
       u128 dmag = den_.mag;
       const u128 dstep = den_.step;
-      const NormalizeAtMsb dnorm = den_.norm;
-      u128 nmag[kN], nstep[kN];
-      NormalizeAtMsb nnorm[kN];
-      bool nneg[kN], nzero[kN];
+      const NormalizeAtMsb& dnorm = den_.norm;
+      u128 nmag[kN];
+      bool nzero[kN];
       for (int m = 0; m < nv; ++m) {
-        nmag[m] = num_[m].mag, nstep[m] = num_[m].step, nnorm[m] = num_[m].norm;
-        nneg[m] = num_[m].neg, nzero[m] = lane_zero && num_[m].zero();
+        nmag[m] = num_[m].mag;
+        nzero[m] = lane_zero && num_[m].zero();
       }
       const int64_t end = i + len;
       for (; i < end; ++i) {
@@ -307,9 +306,9 @@ class FusedSpan {
                   continue;
                 }
                 int ne;
-                const uint64_t a = nnorm[m].sig_bits(nmag[m], ne, wd.nb);
+                const uint64_t a = num_[m].norm.sig_bits(nmag[m], ne, wd.nb);
                 const DivSig q = div_sig_recip64_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
-                put_fragment_var(rec, m, q.sig, q.exp_adj + ne + nexp[m] - de, nneg[m]);
+                put_fragment_var(rec, m, q.sig, q.exp_adj + ne + nexp[m] - de, num_[m].neg);
               }
             }
           }
@@ -318,7 +317,7 @@ class FusedSpan {
         z.step_x();
         if (nv > 0) {
           dmag += dstep;
-          for (int m = 0; m < nv; ++m) nmag[m] += nstep[m];
+          for (int m = 0; m < nv; ++m) nmag[m] += num_[m].step;
         }
       }
       if (nv > 0) {

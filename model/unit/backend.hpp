@@ -47,6 +47,12 @@ class FragmentSink {
       emit(f);
     }
   }
+  // Optional, for a sink keeping records as they are: room for `max_records` records of
+  // `num_varyings` varyings in its own memory (nullptr: not offered). The fused chain then writes
+  // a span's passing fragments there and calls span_done(count) — the same fragments as
+  // emit_span, without the copy.
+  virtual uint8_t* span_space(size_t /*max_records*/, int /*num_varyings*/) { return nullptr; }
+  virtual void span_done(size_t /*count*/) {}
   // Called once by each chain that will emit into the sink (triangles, then line segments, whose
   // draw state may have more varyings), before its first emit.
   virtual void draw_state(const DrawState&) {}
@@ -59,6 +65,11 @@ class KeepFragments final : public FragmentSink {
   explicit KeepFragments(FragmentStore& out) : out_(out) {}
   void emit(const Fragment& f) override { out_.push_back(f); }
   void emit_span(const FragmentRecords& b) override { out_.append(b); }  // one copy
+  // The store's own memory when the shapes agree (no copy; else emit_span widens each record).
+  uint8_t* span_space(size_t max_records, int num_varyings) override {
+    return num_varyings == out_.num_varyings() ? out_.append_space(max_records) : nullptr;
+  }
+  void span_done(size_t count) override { out_.append_commit(count); }
   void draw_state(const DrawState& st) override { out_.widen(st.num_varyings); }
 
  private:

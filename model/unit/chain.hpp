@@ -207,13 +207,19 @@ class FragmentChain {
     if (use_fused_ && fused_.fits(eq)) {  // no tap: stages 7–9 in one loop (model/stages/interp_span.hpp)
       const uint64_t n = (uint64_t)(sp.x1 - sp.x0 + 1);
       uint8_t* rec = nullptr;
-      if (sink_) {  // the span's passing fragments as records, to the sink in one call
-        const size_t need = (size_t)n * fragment_record_bytes(fused_.num_varyings());
-        if (records_.size() < need) records_.resize(need);
-        rec = records_.data();
+      bool lent = false;
+      if (sink_) {  // the span's passing fragments as records: into the sink's memory, or to it in one call
+        rec = sink_->span_space((size_t)n, fused_.num_varyings());
+        lent = rec != nullptr;
+        if (!lent) {
+          const size_t need = (size_t)n * fragment_record_bytes(fused_.num_varyings());
+          if (records_.size() < need) records_.resize(need);
+          rec = records_.data();
+        }
       }
       const uint64_t pass = fused_.run(eq, sp, rec);
-      if (sink_ && pass) sink_->emit_span(FragmentRecords{rec, (size_t)pass, fused_.num_varyings()});
+      if (lent) sink_->span_done((size_t)pass);
+      else if (sink_ && pass) sink_->emit_span(FragmentRecords{rec, (size_t)pass, fused_.num_varyings()});
       stats_.fragments_depth_pass += pass;
       stats_.fragments_depth_fail += n - pass;
       return;

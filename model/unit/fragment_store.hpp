@@ -184,6 +184,18 @@ class FragmentStore {
     for (size_t i = 0; i < b.count; ++i) push_back(b[i]);
   }
 
+  // Contract: room for n more records at the end, returned for the caller to write (in this
+  // store's layout, varyings checked by their writer); append_commit(count ≤ n) then appends the
+  // first count of them. Nothing else may change the store in between.
+  uint8_t* append_space(size_t n) {
+    reserve(n_ + n);
+    return buf_ + n_ * stride_;
+  }
+  void append_commit(size_t count) {
+    if (n_ + count > cap_) throw std::logic_error("FragmentStore::append_commit: beyond append_space");
+    n_ += count;
+  }
+
   // Contract: appends records [first, first + count) of `o` (same num_varyings) in one copy.
   void append(const FragmentStore& o, size_t first, size_t count) {
     if (o.nv_ != nv_) throw std::logic_error("FragmentStore::append: stores of different shapes");

@@ -333,8 +333,10 @@ TEST(FusedSpan, SpanRecordsReachEverySinkAsTheSameFragments) {
     FrameOutput f_staged, f_spans, f_one, f_wide, f_keep;
     Spans staged, spans, wide;
     OneByOne one;
-    FragmentStore kept;
-    KeepFragments keep(kept);
+    FragmentStore kept, kept_wide;
+    KeepFragments keep(kept), keep_wide(kept_wide);  // its memory lent / not (another shape)
+    FrameOutput f_keep_wide;
+    kept_wide.shape(nv + 1);
     staged.s.shape(nv), spans.s.shape(nv), one.s.shape(nv), kept.shape(nv);
     wide.s.shape(nv + 1);  // more varyings than the draw: each record widened
     NoTaps none;
@@ -344,22 +346,24 @@ TEST(FusedSpan, SpanRecordsReachEverySinkAsTheSameFragments) {
     run_raster_unit_to(cfg, st, tris, f_one, &one, none);
     run_raster_unit_to(cfg, st, tris, f_wide, &wide, none);
     run_raster_unit_to(cfg, st, tris, f_keep, &keep, none);
+    run_raster_unit_to(cfg, st, tris, f_keep_wide, &keep_wide, none);
+    EXPECT_EQ(kept_wide.num_varyings(), nv + 1);
     EXPECT_EQ(staged.blocks, 0u);       // the staged chain emits one at a time
     EXPECT_GT(spans.blocks, 100u) << nv;  // the fused chain per span
     EXPECT_EQ(spans.records, spans.s.size());
     ASSERT_GT(staged.s.size(), 1000u) << nv;
-    for (const FragmentStore* got : {&spans.s, &one.s, &wide.s, &kept}) {
+    for (const FragmentStore* got : {&spans.s, &one.s, &wide.s, &kept, &kept_wide}) {
       ASSERT_EQ(got->size(), staged.s.size()) << nv;
       uint64_t bad = 0;
       for (size_t i = 0; i < got->size(); ++i) {
         const Fragment a = staged.s[i], b = (*got)[i];
         bad += same_fragment(a, b, nv) ? 0 : 1;
-        if (got == &wide.s) bad += b.var[nv].sig == 0 && b.var[nv].exp == 0 && !b.var[nv].neg ? 0 : 1;
+        if (got == &wide.s || got == &kept_wide) bad += b.var[nv].sig == 0 && b.var[nv].exp == 0 && !b.var[nv].neg ? 0 : 1;
       }
       EXPECT_EQ(bad, 0u) << nv;
     }
     EXPECT_EQ(wide.s.num_varyings(), nv + 1);
-    for (const FrameOutput* f : {&f_spans, &f_one, &f_wide, &f_keep}) {
+    for (const FrameOutput* f : {&f_spans, &f_one, &f_wide, &f_keep, &f_keep_wide}) {
       EXPECT_TRUE(f->depth == f_staged.depth) << nv;
       EXPECT_EQ(f->stats.fragments_depth_pass, f_staged.stats.fragments_depth_pass) << nv;
       EXPECT_EQ(f->stats.fragments_depth_fail, f_staged.stats.fragments_depth_fail) << nv;
