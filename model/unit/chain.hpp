@@ -66,13 +66,17 @@ class GeometryChain {
     if constexpr (std::is_same<Taps, NoTaps>::value) {
       // Three cached accepted vertices: the trivial accept's one triangle, as the stages below
       // would emit it (model/unit/vertex_cache.hpp; docs/speed.md "Shortcuts").
-      if (cache_.triangle(in, cached_)) {
-        rejected_ = 0;
-        ++s.prims_trivial_accept;
-        out.push_back(cached_);
+      if (const SetupTriangle* t = cached(in.tri, in.prim, s)) {
+        out.push_back(*t);
         return GeomOutcome::Emitted;
       }
     }
+    return run_stages(in, out, s);
+  }
+
+  // Contract: run() through the stages themselves, without the vertex cache (after cached()
+  // returned nullptr for the same primitive).
+  GeomOutcome run_stages(const InputTriangle& in, std::vector<SetupTriangle>& out, RasterStats& s) {
     taps_.template in<ConvertStage>(in);
     const ExactTriangle* ex = nullptr;
     switch (convert_.step(in, [&](const ExactTriangle& e) {
@@ -126,6 +130,18 @@ class GeometryChain {
     }
     if (pieces > 0 && rejected_ == pieces) return GeomOutcome::RejectedRange;  // every piece dropped
     return GeomOutcome::Emitted;
+  }
+
+  // NoTaps only: the one triangle stages 1–4 emit for primitive `prim` when the vertex cache
+  // knows all three vertices as accepted ones (run() would emit the same and count the same:
+  // one trivial accept), counted in `s`; nullptr when it does not (then call run()). The
+  // triangle is valid until the next call. Saves run()'s copies of the input and the output.
+  const SetupTriangle* cached(const ClipTriangle& tri, uint32_t prim, RasterStats& s) {
+    static_assert(std::is_same<Taps, NoTaps>::value, "the vertex cache is used without taps only");
+    if (!cache_.triangle(tri, prim, cached_)) return nullptr;
+    rejected_ = 0;
+    ++s.prims_trivial_accept;
+    return &cached_;
   }
 
   // Pieces of the last run()'s primitive dropped in stage 3 or 4 (its other pieces were emitted).
@@ -311,10 +327,20 @@ class UnitChain {
   // triangles count once each by their setup outcome (s.tris, the unit's tri_* counters).
   void draw(const ClipTriangle& tri, uint32_t prim) {
     ++stats_.prims_in;
+    if constexpr (std::is_same<Taps, NoTaps>::value) {
+      // The vertex cache's triangle (GeometryChain::cached): Emitted, no piece dropped, one setup
+      // triangle — as below, without copying the input or the triangle.
+      if (const SetupTriangle* t = geometry_.cached(tri, prim, stats_)) {
+        PrimDisposition d;
+        d.add(stats_, fragments_.run(*t));
+        d.count(stats_, false);
+        return;
+      }
+    }
     in_.prim = prim;
     in_.tri = tri;
     pieces_.clear();
-    if (!count_geometry(stats_, geometry_.run(in_, pieces_, stats_))) return;
+    if (!count_geometry(stats_, geometry_.run_stages(in_, pieces_, stats_))) return;
     PrimDisposition d;
     d.range = geometry_.pieces_rejected() > 0;
     for (const SetupTriangle& t : pieces_) d.add(stats_, fragments_.run(t));

@@ -95,7 +95,9 @@ class VertexCache {
   // ever written with zero, as snap_vertex does: keep `out` from a default SetupTriangle).
   // false: nothing is known (`out` may be partly written), the caller runs the full chain.
   // Counts hits and misses per vertex looked up.
-  bool triangle(const InputTriangle& in, SetupTriangle& out) {
+  bool triangle(const InputTriangle& in, SetupTriangle& out) { return triangle(in.tri, in.prim, out); }
+  // The same for primitive `prim` with vertices `tri`.
+  bool triangle(const ClipTriangle& tri, uint32_t prim, SetupTriangle& out) {
     if (!usable_) return false;
     if (++prims_ <= min_prims_) return false;
     if (!table_) allocate();
@@ -103,12 +105,12 @@ class VertexCache {
     uint32_t key[3][4 + kMaxVaryings];
     unsigned char* slot[3];
     for (int i = 0; i < 3; ++i) {
-      slot[i] = locate(in.tri.v[i], key[i]);
+      slot[i] = locate(tri.v[i], key[i]);
       __builtin_prefetch(slot[i]);
     }
     for (int i = 0; i < 3; ++i)
-      if (!vertex(in.tri.v[i], key[i], slot[i], out.v[i])) return false;
-    out.prim = in.prim;
+      if (!vertex(tri.v[i], key[i], slot[i], out.v[i])) return false;
+    out.prim = prim;
     return true;
   }
 
