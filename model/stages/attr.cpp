@@ -207,6 +207,66 @@ AttrEdgeTerms attr_edge_terms(const AttrSetup& s) {
   return t;
 }
 
+AttrTerms64 attr_edge_terms64(const Config& cfg, const SetupTriangle& tri, const TriSetup& t, AttrEdgeTerms& out,
+                              i128* area2) {
+  const RasterConfig& rc = cfg.raster;
+  if (attr_position_bits(rc) > 62) return AttrTerms64::Wide;  // check_attr_widths refuses it
+  const int A = rc.attr_subpixel_bits;
+  // attr_setup's M. No overflow: positions and i·2^A (|i| ≤ 2^(window_int_bits − 1)) are below
+  // 2^(attr_position_bits − 1) ≤ 2^61, so every difference is below 2^62.
+  const int64_t ox = tri.v[0].ax, oy = tri.v[0].ay;
+  uint64_t M = (uint64_t)1 << A;
+  const auto grow = [&M](int64_t d) { M = std::max(M, d < 0 ? (uint64_t)0 - (uint64_t)d : (uint64_t)d); };
+  for (int k = 1; k < 3; ++k) grow(tri.v[k].ax - ox), grow(tri.v[k].ay - oy);
+  const int64_t unitA = (int64_t)1 << A, halfA = (int64_t)1 << (A - 1);
+  grow((int64_t)t.x0 * unitA + halfA - ox), grow((int64_t)t.x1 * unitA + halfA - ox);
+  grow((int64_t)t.y0 * unitA + halfA - oy), grow((int64_t)t.y1 * unitA + halfA - oy);
+  const int need = msb_index((u128)M) + 3;
+  const int drop = std::max(0, need - rc.attr_coord_bits);
+  const int F = A - drop;
+  const auto rne = [drop](int64_t v) {
+    return drop == 0 ? v : detail::shift_round_right<int64_t, uint64_t>(v, drop, Round::HalfEven);
+  };
+  int64_t x[3], y[3];
+  const int64_t X0v = rne(tri.v[0].ax), Y0v = rne(tri.v[0].ay);
+  x[0] = y[0] = 0;
+  for (int k = 1; k < 3; ++k) x[k] = rne(tri.v[k].ax) - X0v, y[k] = rne(tri.v[k].ay) - Y0v;
+  // Edge k from v_{k+1} to v_{k+2}; the cross products may leave int64.
+  int64_t a[3], b[3], c[3];
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    a[k] = y[i] - y[j];  // |relative| < 2^(attr_coord_bits − 2) + 1: no overflow
+    b[k] = x[j] - x[i];
+    int64_t p, q;
+    if (__builtin_mul_overflow(x[i], y[j], &p) || __builtin_mul_overflow(x[j], y[i], &q) ||
+        __builtin_sub_overflow(p, q, &c[k]))
+      return AttrTerms64::Wide;
+  }
+  if (c[0] == 0) return AttrTerms64::ZeroArea;
+  if (c[0] < 0) {
+    for (int k = 0; k < 3; ++k) {
+      a[k] = -a[k], b[k] = -b[k];
+      if (__builtin_sub_overflow((int64_t)0, c[k], &c[k])) return AttrTerms64::Wide;
+    }
+  }
+  // attr_edge_terms at the anchor (t.x0, t.y0): X0 = i0·2^F + 2^(F−1) − ox at F bits (< 2^62).
+  const int64_t unit = (int64_t)1 << F, h = (int64_t)1 << (F - 1);
+  const int64_t XA = (int64_t)t.x0 * unit + h - X0v, YA = (int64_t)t.y0 * unit + h - Y0v;
+  for (int k = 0; k < 3; ++k) {
+    int64_t ax, by, e;
+    if (__builtin_mul_overflow(a[k], unit, &out.dx64[k]) || __builtin_mul_overflow(b[k], unit, &out.dy64[k]) ||
+        __builtin_mul_overflow(a[k], XA, &ax) || __builtin_mul_overflow(b[k], YA, &by) ||
+        __builtin_add_overflow(ax, by, &e) || __builtin_add_overflow(e, c[k], &out.e064[k]))
+      return AttrTerms64::Wide;
+    out.dx[k] = out.dx64[k], out.dy[k] = out.dy64[k], out.e0[k] = out.e064[k];
+  }
+  out.fits64 = true;
+  out.i0 = t.x0;
+  out.j0 = t.y0;
+  *area2 = c[0];
+  return AttrTerms64::Done;
+}
+
 Plane attr_plane(const AttrEdgeTerms& t, const int64_t q[3]) {
   Plane p;
   p.i0 = t.i0;
@@ -228,8 +288,7 @@ Plane attr_plane(const AttrEdgeTerms& t, const int64_t q[3]) {
 }
 
 namespace {
-DepthSetup attr_depth_setup_terms(const Config& cfg, const SetupTriangle& tri, const AttrSetup& a,
-                                  const AttrEdgeTerms& t) {
+DepthSetup attr_depth_setup_terms(const Config& cfg, const SetupTriangle& tri, i128 area2, const AttrEdgeTerms& t) {
   // Vertex values z_k·(2^db − 1) kept to the absolute precision of z_k itself: z_frac_bits − db
   // fraction bits of an LSB (PRECISION IS LOST HERE: ≤ 2^−(z_frac_bits − db + 1) LSB, RNE, the
   // same as the rounding of z_k; 2^−9 LSB at D24). z_frac_bits + 1 signed bits.
@@ -238,7 +297,7 @@ DepthSetup attr_depth_setup_terms(const Config& cfg, const SetupTriangle& tri, c
   for (int k = 0; k < 3; ++k) q[k] = attr_depth_q(rc, tri.v[k].z);
   DepthSetup d;
   d.z = attr_plane(t, q);
-  d.den = a.area2 << (rc.z_frac_bits - rc.depth_bits());
+  d.den = area2 << (rc.z_frac_bits - rc.depth_bits());
   d.max_code = (int64_t)depth_max_code(rc);
   return d;
 }
@@ -249,15 +308,26 @@ void attr_interp_setup_terms(const Config& cfg, const DrawState& st, const Setup
 }  // namespace
 
 DepthSetup attr_depth_setup(const Config& cfg, const SetupTriangle& tri, const AttrSetup& a) {
-  return attr_depth_setup_terms(cfg, tri, a, attr_edge_terms(a));
+  return attr_depth_setup_terms(cfg, tri, a.area2, attr_edge_terms(a));
 }
 
 bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, bool varyings,
                       TriangleEquations& eq) {
-  const AttrSetup a = attr_setup(cfg, tri, eq.edges);
-  if (!a.ok) return false;
-  const AttrEdgeTerms t = attr_edge_terms(a);  // once for every plane of the triangle
-  eq.depth = attr_depth_setup_terms(cfg, tri, a, t);
+  // The edge terms once for every plane of the triangle: in 64-bit words where they fit.
+  AttrEdgeTerms t;
+  i128 area2 = 0;
+  switch (attr_edge_terms64(cfg, tri, eq.edges, t, &area2)) {
+    case AttrTerms64::Done: break;
+    case AttrTerms64::ZeroArea: return false;
+    case AttrTerms64::Wide: {
+      const AttrSetup a = attr_setup(cfg, tri, eq.edges);
+      if (!a.ok) return false;
+      t = attr_edge_terms(a);
+      area2 = a.area2;
+      break;
+    }
+  }
+  eq.depth = attr_depth_setup_terms(cfg, tri, area2, t);
   if (varyings) attr_interp_setup_terms(cfg, st, tri, t, eq.interp);
   else eq.interp.n = 0;
   return true;

@@ -89,6 +89,19 @@ struct AttrEdgeTerms {
 };
 AttrEdgeTerms attr_edge_terms(const AttrSetup& a);
 
+// The same terms straight from the vertices in 64-bit words (docs/speed.md "Session 8: the
+// bunny's per-triangle cost"): attr_setup(cfg, tri, t) then attr_edge_terms, every
+// intermediate value (the magnitude M, the dropped positions, the coefficients, the cross
+// products, the edge values at the anchor) formed in int64_t with an overflow check. Done:
+// `out` equals attr_edge_terms(attr_setup(cfg, tri, t)) member for member (fits64 set) and
+// *area2 its area2; ZeroArea: attr_setup's ok = false (2·area' = 0); Wide: some value did not
+// fit int64_t — nothing is decided, the caller takes attr_setup / attr_edge_terms. Needs
+// attr_separate and check_attr_widths. Tests: AttrTerms64.* (tests/model/attr_plane_test.cpp),
+// 10^8 random in attr_plane_slow_test.cpp.
+enum class AttrTerms64 : uint8_t { Done, ZeroArea, Wide };
+AttrTerms64 attr_edge_terms64(const Config& cfg, const SetupTriangle& tri, const TriSetup& t, AttrEdgeTerms& out,
+                              i128* area2);
+
 // Contract: make_attr_plane(a, q) for t = attr_edge_terms(a), bit for bit: Σ_k term_k·q[k] with
 // the terms formed once per triangle; each product int64_t × int64_t → i128 (one widening
 // multiply) when t.fits64, else i128 × i128. Tests: AttrPlane.* (tests/model/attr_test.cpp),

@@ -15,3 +15,9 @@ TEST(AttrPlaneSlow, HundredMillionRandomCasesEqualTheReference) {
   const uint64_t fits = check_random(0xa77e5, n, [](const PlaneCase&, uint64_t) {});
   std::printf("fast path taken in %llu of %llu cases\n", (unsigned long long)fits, (unsigned long long)n);
 }
+
+TEST(AttrTerms64Slow, HundredMillionRandomTrianglesEqualTheReference) {
+  const uint64_t n = 100000000;
+  const uint64_t done = check_random_terms(0x7e6405, n);
+  std::printf("64-bit edge terms in %llu of %llu cases\n", (unsigned long long)done, (unsigned long long)n);
+}

@@ -77,3 +77,80 @@ TEST(AttrPlane, RandomCasesEqualTheReference) {
     if (i % 1000 == 0) expect_definition(c, "random");
   });
 }
+
+// attr_edge_terms64 (the vertices to the edge terms in 64-bit words) at its int64 boundaries,
+// default configuration (A = 24, attr_coord_bits = 40: no bit dropped below 2^37): vertex 0 at
+// the origin, v1 = (2^32, 0), v2 = (x2, y2), so that 2·area' = 2^32·y2 − x2·0 … — the cross
+// product at 2^63 − 2^32 (in), 2^63 (out), −2^63 (in, but its negation for the clockwise
+// triangle is out), and the difference of two in-range products leaving int64; then, from
+// random triangles, the two sides of the first int64 overflow found by bisection on one vertex
+// offset. Every case against the reference attr_setup + attr_edge_terms and the i128 oracle
+// terms_fit64 (Done exactly when every intermediate fits).
+TEST(AttrTerms64, DirectedInt64BoundariesEqualTheReference) {
+  const Config cfg;
+  const int A = cfg.raster.attr_subpixel_bits;
+  int count[3] = {};
+  const auto run = [&](int64_t x1, int64_t y1, int64_t x2, int64_t y2, const char* what) {
+    TermsCase c;
+    c.tri.v[0].ax = c.tri.v[0].ay = 0;
+    c.tri.v[1].ax = x1, c.tri.v[1].ay = y1, c.tri.v[2].ax = x2, c.tri.v[2].ay = y2;
+    int lo[2] = {0, 0}, hi[2] = {0, 0};
+    for (const SetupVertex& v : c.tri.v) {
+      lo[0] = std::min(lo[0], (int)(v.ax >> A)), hi[0] = std::max(hi[0], (int)(v.ax >> A));
+      lo[1] = std::min(lo[1], (int)(v.ay >> A)), hi[1] = std::max(hi[1], (int)(v.ay >> A));
+    }
+    c.t.x0 = lo[0], c.t.x1 = hi[0], c.t.y0 = lo[1], c.t.y1 = hi[1];
+    ++count[(int)expect_same_terms(cfg, c, what, 0)];
+  };
+  const int64_t X = (int64_t)1 << 32, Y = (int64_t)1 << 31;
+  run(X, 0, 0, Y - 1, "c = 2^63 - 2^32");
+  run(X, 0, 0, Y, "c = 2^63");
+  run(X, 0, 0, -Y, "c = -2^63, negated");
+  run(X, 0, 0, -Y - 1, "c < -2^63");
+  run(X, -Y, Y, Y - 1, "difference 2^63 - 2^32 + 2^62");
+  run(X / 2, -Y, Y, Y, "difference of two 2^62 products = 2^63");
+  run(1 << 20, 0, 0, 1 << 20, "small");
+  run(0, 0, 0, 1 << 20, "zero area");
+  EXPECT_GE(count[(int)AttrTerms64::Done], 2);
+  EXPECT_GE(count[(int)AttrTerms64::Wide], 4);
+  EXPECT_EQ(count[(int)AttrTerms64::ZeroArea], 1);
+  // Bisection: a triangle that answers Done, v2 moved along a random direction until Wide; the
+  // adjacent offsets on both sides of the flip.
+  std::mt19937_64 rng(0x7e64);
+  int flips = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Config c2 = terms_config(trial % 2 ? 2 : 0);  // (the narrow ones never leave int64)
+    const int pb = c2.raster.window_int_bits + c2.raster.attr_subpixel_bits;
+    TermsCase c = random_terms_case(rng, c2.raster);
+    AttrEdgeTerms t;
+    i128 ar;
+    if (attr_edge_terms64(c2, c.tri, c.t, t, &ar) != AttrTerms64::Done) continue;
+    const int64_t dx = (int64_t)(rng() % 7) - 3, dy = (int64_t)(rng() % 7) - 3;
+    if (dx == 0 && dy == 0) continue;
+    const int64_t lim = (int64_t)1 << (pb - 1);
+    const auto moved = [&](int64_t s) {
+      TermsCase m = c;
+      m.tri.v[2].ax = std::max(-lim, std::min(lim - 1, c.tri.v[2].ax + s * dx));
+      m.tri.v[2].ay = std::max(-lim, std::min(lim - 1, c.tri.v[2].ay + s * dy));
+      return m;
+    };
+    const auto wide = [&](int64_t s) {
+      const TermsCase m = moved(s);
+      return attr_edge_terms64(c2, m.tri, m.t, t, &ar) == AttrTerms64::Wide;
+    };
+    int64_t lo = 0, hi = lim / 2;
+    if (!wide(hi)) continue;
+    while (hi - lo > 1) {
+      const int64_t mid = lo + (hi - lo) / 2;
+      (wide(mid) ? hi : lo) = mid;
+    }
+    // lo: not Wide, hi: Wide — both against the reference and the oracle.
+    const TermsCase a = moved(lo), b = moved(hi);
+    expect_same_terms(c2, a, "below the flip", (uint64_t)trial);
+    EXPECT_EQ(expect_same_terms(c2, b, "at the flip", (uint64_t)trial), AttrTerms64::Wide);
+    ++flips;
+  }
+  EXPECT_GT(flips, 100);
+}
+
+TEST(AttrTerms64, RandomTrianglesEqualTheReference) { check_random_terms(0x7e640, 1000000); }
