@@ -3,9 +3,10 @@
 //
 // A Fragment (model/unit/io.hpp) holds kMaxVaryings FxFloats: 272 bytes whatever the draw. The
 // store keeps only what the draw has: a record is kFragmentHeaderBytes (prim, x, y, depth as
-// 32-bit words) plus kFragmentVaryingBytes per active varying (the significand as 32 bits —
-// raster.varying_out_sig_bits ≤ kStoredSigBits, checked when the store is shaped — and the
-// exponent with the sign in one 32-bit word). With 2 varyings a record is 32 bytes instead of 272.
+// 32-bit words) plus kFragmentVaryingBytes per active varying (the significand as 32 bits and
+// the exponent with the sign in one 32-bit word; push_back checks each value with
+// fragment_var_storable, and the fused span writes records only where FusedSpan::applies and its
+// per-triangle exponent bound prove every value storable, model/stages/interp_span.hpp). With 2 varyings a record is 32 bytes instead of 272.
 // Records live in one malloc'd byte buffer grown by realloc (glibc moves a large block with
 // mremap, no copy), never zero-filled.
 //
