@@ -104,8 +104,9 @@ struct EqMeta {
   int64_t items = 0;       // … and the number of items
 };
 
-// Triangles one thread set up from its share of a batch.
-struct Batch {
+// Triangles one thread set up from its share of a batch (on cache lines of its own: the other
+// parity's is being filled while the threads read this one).
+struct alignas(kCacheLineBytes) Batch {
   std::vector<TriangleEquations> eqs;  // grown, never shrunk: a frame reuses the last one's
   std::vector<EqMeta> meta;
   size_t n = 0;
@@ -137,12 +138,22 @@ void copy_used(const TriangleEquations& a, int nv, TriangleEquations& b) {
   }
 }
 
-// One thread's state; kept by the pool from frame to frame (buffers keep their capacity).
+// A thread's records of one raster step and their runs (cache lines of their own: the thread
+// appends to one parity's, a record at a time, while the others read the other parity's).
+struct alignas(kCacheLineBytes) StepRecords {
+  FragmentStore store;
+  std::vector<Run> runs;
+};
+
+// One thread's state; kept by the pool from frame to frame (buffers keep their capacity). What
+// the other threads read during a step (a batch, a step's records) never shares a cache line
+// with what this thread writes during it (its counters, its cursor, the other parities): on
+// two cores running at once such a line would move between them at every write
+// (docs/speed.md "Session 8: threads").
 struct alignas(kCacheLineBytes) Worker {
   RasterStats stats;
-  Batch batch[2];             // by batch parity
-  FragmentStore store[2];     // records of a raster step, by step parity
-  std::vector<Run> runs[2];
+  Batch batch[2];        // by batch parity
+  StepRecords step[2];   // by step parity
   // Raster cursor in the current batch: producer, index in its route list, item of the triangle.
   int cur_p = 0;
   size_t cur_r = 0;
@@ -274,8 +285,7 @@ class FrameRun {
     for (int k = 0; k < 31; ++k)
       if (R_ == (int64_t)1 << k) band_shift_ = k;
     for (int q = 0; q < 2; ++q) base_weight_[q].assign((size_t)T_, 0), base_tri_[q].assign((size_t)T_, 0);
-    head_.resize((size_t)T_);
-    before_.resize((size_t)T_);
+    cursor_.resize((size_t)T_);
   }
 
   // Contract: the whole frame; `f` is prepared here (frame_begin's checks come first).
@@ -296,8 +306,8 @@ class FrameRun {
       w.stats = RasterStats{};
       w.error = nullptr;
       for (int q = 0; q < 2; ++q) {
-        w.store[q].shape(st_.num_varyings);
-        w.runs[q].clear();
+        w.step[q].store.shape(st_.num_varyings);
+        w.step[q].runs.clear();
         w.batch[q].route.resize((size_t)T_);
       }
     }
@@ -354,7 +364,7 @@ class FrameRun {
           if (ctl_.raster >= 0) {
             phase(w, ThreadPhase::Raster);
             if (!chain) chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, records_ ? &to_store : nullptr, taps);
-            to_store.to = &me.store[ctl_.rec_parity];
+            to_store.to = &me.step[ctl_.rec_parity].store;
             raster(w, *chain);
           }
           if (ctl_.setup >= 0) {
@@ -464,8 +474,8 @@ class FrameRun {
     Worker& me = W_[(size_t)w];
     const int q = (int)(ctl_.raster & 1);
     const uint64_t end = ctl_.raster_end;
-    FragmentStore& store = me.store[ctl_.rec_parity];
-    std::vector<Run>& runs = me.runs[ctl_.rec_parity];
+    FragmentStore& store = me.step[ctl_.rec_parity].store;
+    std::vector<Run>& runs = me.step[ctl_.rec_parity].runs;
     store.clear();
     runs.clear();
     const int64_t vy = st_.viewport_y;
@@ -502,50 +512,40 @@ class FrameRun {
     me.next_start = kNoStart;
   }
 
-  // The records of the previous raster step (parity q) into the frame's store at their place in
-  // the sequential order, or, on the calling thread, to the sink.
+  // The records of the previous raster step (parity q) at their place in the sequential order:
+  // into the frame's store, thread w writing the w-th of T contiguous parts of the step's range
+  // (from every thread's records: were each thread to write its own runs, the bunny's runs of a
+  // few records would put both threads' writes on most cache lines of the store), or, on the
+  // calling thread, to the sink.
   void output(int w, int q) {
-    if (keep_) {
-      phase(w, ThreadPhase::Output);
-      const std::vector<Run>& mine = W_[(size_t)w].runs[q];
-      const FragmentStore& src = W_[(size_t)w].store[q];
-      // For each other thread: its next run and the records before it.
-      size_t at_mine = 0;
-      std::vector<size_t>& head = head_[(size_t)w], &before = before_[(size_t)w];
-      head.assign((size_t)T_, 0);
-      before.assign((size_t)T_, 0);
-      for (const Run& r : mine) {
-        size_t dst = out_base_ + at_mine;
-        for (int t = 0; t < T_; ++t) {
-          if (t == w) continue;
-          const std::vector<Run>& other = W_[(size_t)t].runs[q];
-          size_t& h = head[(size_t)t];
-          size_t& n = before[(size_t)t];
-          while (h < other.size() && run_before(other[h], r)) n += other[h++].count;
-          dst += n;
-        }
-        keep_->write_at(dst, src, at_mine, r.count);
-        at_mine += r.count;
+    if (!keep_ && !(sink_ && w == 0)) return;
+    phase(w, ThreadPhase::Output);
+    const size_t n = out_size_ - out_base_;  // the step's records
+    const size_t lo = keep_ ? n * (size_t)w / (size_t)T_ : 0, hi = keep_ ? n * (size_t)(w + 1) / (size_t)T_ : n;
+    OutputCursor& c = cursor_[(size_t)w];
+    c.head.assign((size_t)T_, 0);
+    c.pos.assign((size_t)T_, 0);
+    // The runs in the sequential order (a T-way merge by key); `at`: the step's records before
+    // the run.
+    for (size_t at = 0; at < hi;) {
+      int best = -1;
+      for (int t = 0; t < T_; ++t) {
+        const std::vector<Run>& r = W_[(size_t)t].step[q].runs;
+        if (c.head[(size_t)t] == r.size()) continue;
+        if (best < 0 || run_before(r[c.head[(size_t)t]], W_[(size_t)best].step[q].runs[c.head[(size_t)best]])) best = t;
       }
-    } else if (sink_ && w == 0) {
-      phase(w, ThreadPhase::Output);
-      std::vector<size_t>& head = head_[0], &pos = before_[0];
-      head.assign((size_t)T_, 0);
-      pos.assign((size_t)T_, 0);
-      for (;;) {
-        int best = -1;
-        for (int t = 0; t < T_; ++t) {
-          const std::vector<Run>& r = W_[(size_t)t].runs[q];
-          if (head[(size_t)t] == r.size()) continue;
-          if (best < 0 || run_before(r[head[(size_t)t]], W_[(size_t)best].runs[q][head[(size_t)best]])) best = t;
-        }
-        if (best < 0) break;
-        const Run& run = W_[(size_t)best].runs[q][head[(size_t)best]++];
-        const FragmentStore& src = W_[(size_t)best].store[q];
-        size_t& p = pos[(size_t)best];
-        for (size_t i = p; i < p + run.count; ++i) sink_->emit(src[i]);
-        p += run.count;
+      if (best < 0) break;
+      const Run& run = W_[(size_t)best].step[q].runs[c.head[(size_t)best]++];
+      const FragmentStore& src = W_[(size_t)best].step[q].store;
+      size_t& p = c.pos[(size_t)best];
+      const size_t a = std::max(at, lo), b = std::min(at + run.count, hi);
+      if (a < b) {
+        if (keep_) keep_->write_at(out_base_ + a, src, p + (a - at), b - a);
+        else
+          for (size_t i = p; i < p + run.count; ++i) sink_->emit(src[i]);
       }
+      p += run.count;
+      at += run.count;
     }
   }
 
@@ -556,7 +556,7 @@ class FrameRun {
     if (ctl_.raster >= 0) {  // the step's records go out in the next step
       size_t total = 0;
       uint64_t next = kNoStart;
-      for (const Worker& w : W_) total += w.store[ctl_.rec_parity].size(), next = std::min(next, w.next_start);
+      for (const Worker& w : W_) total += w.step[ctl_.rec_parity].store.size(), next = std::min(next, w.next_start);
       if (records_) {
         ctl_.out_parity = ctl_.rec_parity;
         out_base_ = out_size_;
@@ -635,7 +635,11 @@ class FrameRun {
   int64_t set_up_ = 0, rastered_ = 0;   // batches set up, batches rasterised
   bool batch_empty_[2] = {true, true};
   std::vector<uint64_t> base_weight_[2], base_tri_[2];  // per producer, by batch parity
-  std::vector<std::vector<size_t>> head_, before_;  // output() scratch, per thread
+  // output()'s merge, per thread: each thread's next run and its records before it.
+  struct alignas(kCacheLineBytes) OutputCursor {
+    std::vector<size_t> head, pos;
+  };
+  std::vector<OutputCursor> cursor_;
 };
 
 }  // namespace
