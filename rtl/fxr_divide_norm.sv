@@ -7,8 +7,8 @@
 //   else RNE(x / 2^(m-OutBits+1)); a carry out of the rounding renormalises (sig_o = 2^(OutBits-1),
 //   m + 1). msb_o = m (+1 on the carry). x_i = 0: sig_o = 0, msb_o = 0.
 //   en_i low: sig_o = 0, msb_o = 0 whatever x_i (the caller reads the outputs only with en_i high;
-//   the simulator then skips the priority encoder and the wide shift: docs/rtl.md, "Co-simulation
-//   speed"). Tie it high where the outputs are always read.
+//   the simulator then skips the normaliser: docs/rtl.md, "Co-simulation speed"). Tie it high
+//   where the outputs are always read.
 module fxr_divide_norm #(
   parameter int InBits  = 93,
   parameter int OutBits = 32,
@@ -20,16 +20,33 @@ module fxr_divide_norm #(
   output logic [MsbBits-1:0] msb_o
 );
   // Leading one (priority encoder) and the left shift that puts it at bit InBits-1.
+  // The leading one and the shift to it in one log-step normaliser: x placed at the top of a
+  // power-of-two word, shifted up by 2^l wherever its top 2^l bits are zero (l from the largest
+  // down), the shifts' sum is the count of leading zeros lz = InBits − 1 − m. Not a priority loop
+  // over the InBits bits and a barrel shift by InBits − 1 − m: Verilator runs that loop bit by bit
+  // in every evaluation (125 iterations for the back end's denominator; docs/rtl.md,
+  // "Co-simulation speed", session 8), and the shifter is the same.
+  localparam int LzBits  = $clog2(InBits);
+  localparam int PadBits = 1 << LzBits;  // >= InBits
   logic [MsbBits-1:0] m;
   logic [InBits-1:0]  xn;
+  logic [PadBits-1:0] nv;
+  logic [LzBits-1:0]  lz;
   always_comb begin
     m  = '0;
     xn = '0;
+    nv = '0;
+    lz = '0;
     if (en_i) begin
-      for (int i = 0; i < InBits; i++) begin
-        if (x_i[i]) m = MsbBits'(i);
+      nv = PadBits'(x_i) << (PadBits - InBits);
+      for (int l = LzBits - 1; l >= 0; l--) begin
+        if ((nv >> (PadBits - (1 << l))) == '0) begin
+          lz = lz | (LzBits'(1) << l);
+          nv = nv << (1 << l);
+        end
       end
-      xn = x_i << (MsbBits'(InBits - 1) - m);
+      xn = nv[PadBits-1 -: InBits];
+      m  = (x_i == '0) ? '0 : MsbBits'(InBits - 1) - MsbBits'(lz);
     end
   end
 

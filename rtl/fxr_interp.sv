@@ -113,9 +113,11 @@ module fxr_interp #(
   /* verilator lint_off UNUSEDSIGNAL */  // the products' top bits (the sums are taken modulo 2^IPB)
   logic signed [IPB+PB:0] p_xprod [NP], p_yprod [NP];
   /* verilator lint_on UNUSEDSIGNAL */
-  // The combinational blocks below are evaluated only while their result is read (here: a span
-  // at the input; it is read in the accepting clock only) and are 0 otherwise, so that the
-  // simulator skips an idle interpolator's wide arithmetic (docs/rtl.md, "Co-simulation speed").
+  // The combinational blocks below are evaluated only while their result may be read (here: a
+  // span at the input in a clock it can be accepted, `plane_en` below; not while it waits for
+  // the divider) and are 0 otherwise, so that the simulator skips the wide arithmetic then
+  // (docs/rtl.md, "Co-simulation speed").
+  logic plane_en;
   always_comb begin
     for (int p = 0; p < NP; p++) begin
       pc[p] = '0;
@@ -129,7 +131,7 @@ module fxr_interp #(
       p_xprod[p] = '0;
       p_yprod[p] = '0;
       p_start[p] = '0;
-      if (in_valid_i) begin
+      if (plane_en) begin
         // block p at [(NP − 1 − p)·VB +: VB], fields from its top
         pc[p]   = $signed(ctx[(NP - p) * VB - 1 -: IPB]);
         pdx[p]  = $signed(ctx[(NP - p) * VB - 1 - IPB -: IPB]);
@@ -169,7 +171,7 @@ module fxr_interp #(
     z_xprod = '0;
     z_yprod = '0;
     z_start = '0;
-    if (in_valid_i) begin
+    if (plane_en) begin
       zc   = $signed(ctx[ZBase + ZVB - 1 -: ZPB]);
       zdx  = $signed(ctx[ZBase + ZVB - 1 - ZPB -: ZPB]);
       zdy  = $signed(ctx[ZBase + ZVB - 1 - 2 * ZPB -: ZPB]);
@@ -294,6 +296,11 @@ module fxr_interp #(
   logic accept;
   assign in_ready_o = front_q == FrIdle || handoff;
   assign accept     = in_valid_i & in_ready_o;
+  // plane_en: accept without out_ready_i (b_free's b_fire), from registers only. Not accept
+  // itself: out_ready_i is combinational from the unit's and the back end's output and memory
+  // ports, and Verilator evaluates logic that depends on top-level inputs in every eval() (twice
+  // per clock), where it evaluates the rest once (docs/rtl.md, "Co-simulation speed").
+  assign plane_en   = in_valid_i & (front_q == FrIdle | (front_q == FrDone & (~b_valid_q | b_last)));
 
   // The depth code of the current sample: RNE(q + r/den), clamped to [0, 2^db − 1].
   logic [RB-1:0]        two_r;

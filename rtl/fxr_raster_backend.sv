@@ -195,8 +195,12 @@ module fxr_raster_backend #(
   logic                             ip_in_valid, ip_in_ready;
   fxr_rec_pkg::span_t               ip_in;
   fxr_rec_pkg::triangle_equations_t ip_ctx;
+  // The entry is selected only with a span offered (interp reads ctx_i with in_valid_i; the
+  // record is '0 otherwise), so that a simulator skips the wide select on the other clocks
+  // (docs/rtl.md, "Co-simulation speed").
   always_comb begin
-    ip_ctx     = eq_q[rd_sel * EqBits +: EqBits];
+    ip_ctx     = '0;
+    if (ip_in_valid) ip_ctx = eq_q[rd_sel * EqBits +: EqBits];
     ip_in      = tv_out;
     ip_in.prim = ip_ctx.prim;
   end

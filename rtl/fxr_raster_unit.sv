@@ -149,11 +149,16 @@ module fxr_raster_unit #(
   // ---- the number of varyings: varyings from nvar_q on enter as +0 ------------------------------
   logic [InBits-1:0] in_flat, in_masked;
   assign in_flat = in_i;
+  // Evaluated only with an input offered ('0 otherwise: fxr_input reads in_i only then), so that a
+  // simulator skips the masking on the clocks without input (docs/rtl.md, "Co-simulation speed").
   always_comb begin
-    in_masked = in_flat;
-    for (int v = 0; v < 3; v++)
-      for (int k = 0; k < NumVaryings; k++)
-        if (VarBits'(k) >= nvar_q) in_masked[InBits - PrimBits - F32Bits * (v * WordsPerVertex + 4 + k) - 1 -: F32Bits] = '0;
+    in_masked = '0;
+    if (in_valid_i) begin
+      in_masked = in_flat;
+      for (int v = 0; v < 3; v++)
+        for (int k = 0; k < NumVaryings; k++)
+          if (VarBits'(k) >= nvar_q) in_masked[InBits - PrimBits - F32Bits * (v * WordsPerVertex + 4 + k) - 1 -: F32Bits] = '0;
+    end
   end
 
   // ---- stage 1: input conversion -----------------------------------------------------------------

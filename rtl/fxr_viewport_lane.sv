@@ -91,73 +91,80 @@ module fxr_viewport_lane #(
   assign rest_in = n_norm[RestBits-1:0];
 
   // ---- the divider: stage 0 holds the pre register, stage t + 1 the result of step t ---------
-  // Flat vectors, slice t the register after step t − 1 (Icarus 11 does not update continuous
-  // assignments from unpacked array words written in other generate scopes, Yosys 0.23 reads no
-  // multi-dimensional packed arrays).
+  // One unpacked array per field, element t the register after step t − 1 (the last stage,
+  // QuotBits, in plain registers: the post logic reads it), all written by one clocked process,
+  // a loop over the steps. Why this form (docs/rtl.md, "Co-simulation speed", session 8): flat
+  // vectors with a slice per stage made Verilator copy and re-insert whole vectors for every
+  // stage (the lanes were 27 % of the unit's simulation); registers in generate scopes hang
+  // Icarus 11, which also does not update continuous assignments from unpacked array words
+  // written in other generate scopes, nor write members of struct arrays (docs/references.md).
+  // Yosys (mem2reg) makes each element a register: the flip-flops are the flat vectors' bits.
+  // The job's kind, sign, zero flag and the quotient's exponent P (zero FLT: the result exponent)
+  // travel with the quotient bits as one side word {kind, neg, zero, P}.
   localparam int RemBits = DBits;  // the remainder stays below d
-  logic [2*(QuotBits+1)-1:0]        kind_q;
-  logic [QuotBits:0]                neg_q, zero_q, v_q;
-  logic [PBits*(QuotBits+1)-1:0]    p_q;
-  logic [RemBits*(QuotBits+1)-1:0]  rem_q;
-  logic [RestBits*(QuotBits+1)-1:0] rest_q;
-  /* verilator lint_off UNUSEDSIGNAL */  // slice t holds t quotient bits: the top one is read only in the last
-  logic [QuotBits*(QuotBits+1)-1:0] quo_q;
-  /* verilator lint_on UNUSEDSIGNAL */
-  logic [DBits*QuotBits-1:0]        d_q;  // the divisor of steps 0 … QuotBits − 1
+  localparam int SideBits = 2 + 1 + 1 + PBits;
+  logic [QuotBits:0] v_q;
+  (* mem2reg *) logic [SideBits-1:0] side_a [QuotBits];
+  (* mem2reg *) logic [RemBits-1:0]  rem_a  [QuotBits];
+  (* mem2reg *) logic [RestBits-1:0] rest_a [QuotBits];
+  (* mem2reg *) logic [QuotBits-1:0] quo_a  [QuotBits];  // element t holds t quotient bits
+  (* mem2reg *) logic [DBits-1:0]    d_a    [QuotBits];  // the divisor of steps 0 … QuotBits − 1
+  logic [SideBits-1:0] side_l;  // stage QuotBits
+  logic [RemBits-1:0]  rem_l;
+  logic [RestBits-1:0] rest_l;
+  logic [QuotBits-1:0] quo_l;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) v_q[0] <= 1'b0;
-    else if (en_i) v_q[0] <= valid_i;
-  end
-  always_ff @(posedge clk_i) begin
-    if (en_i && valid_i) begin
-      kind_q[(0)*2 +: 2] <= kind_i;
-      neg_q[0] <= neg_i;
-      zero_q[0] <= n_zero;
-      p_q[(0)*PBits +: PBits] <= p_in;
-      rem_q[(0)*RemBits +: RemBits] <= rem_in;
-      rest_q[(0)*RestBits +: RestBits] <= rest_in;
-      quo_q[(0)*QuotBits +: QuotBits] <= '0;
-      d_q[(0)*DBits +: DBits] <= d_norm;
-    end
-  end
-
-  for (genvar t = 0; t < QuotBits; t++) begin : g_step
+  // Step t: r = 2·rem + the next numerator bit; q_t = r ≥ d; the remainder r − q_t·d (< d).
+  // Returns {q_t, remainder}.
+  function automatic logic [RemBits:0] div_step(input logic [RemBits-1:0] rem, input logic nb,
+                                                input logic [DBits-1:0] d);
     logic [DBits:0]   r;
     logic [DBits+1:0] sub;   // r − d; its sign bit is the quotient bit's complement
-    logic [DBits-1:0] diff;  // r − d when r ≥ d: below d
-    logic             qb;
-    logic [DBits-1:0]    rem_t;   // the remainder (< d)
-    logic [RestBits-1:0] rest_t;
-    logic [QuotBits-2:0] quo_t;   // the quotient bits that are kept
-    assign rem_t = rem_q[(t)*RemBits +: RemBits];
-    assign rest_t = rest_q[(t)*RestBits +: RestBits];
-    assign quo_t = quo_q[(t)*QuotBits +: QuotBits-1];
-    assign r = {rem_t, rest_t[RestBits-1]};
-    assign sub = {1'b0, r} - {2'b0, d_q[(t)*DBits +: DBits]};
-    assign qb = !sub[DBits+1];
-    assign diff = sub[DBits-1:0];
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) v_q[t+1] <= 1'b0;
-      else if (en_i) v_q[t+1] <= v_q[t];
-    end
-    always_ff @(posedge clk_i) begin
-      if (en_i && v_q[t]) begin
-        kind_q[(t+1)*2 +: 2] <= kind_q[(t)*2 +: 2];
-        neg_q[t+1] <= neg_q[t];
-        zero_q[t+1] <= zero_q[t];
-        p_q[(t+1)*PBits +: PBits] <= p_q[(t)*PBits +: PBits];
-        rem_q[(t+1)*RemBits +: RemBits] <= qb ? diff : r[DBits-1:0];
-        rest_q[(t+1)*RestBits +: RestBits] <= {rest_t[RestBits-2:0], 1'b0};
-        quo_q[(t+1)*QuotBits +: QuotBits] <= {quo_t, qb};
+    r = {rem, nb};
+    sub = {1'b0, r} - {2'b0, d};
+    div_step = !sub[DBits+1] ? {1'b1, sub[DBits-1:0]} : {1'b0, r[DBits-1:0]};
+  endfunction
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) v_q <= '0;
+    else if (en_i) v_q <= {v_q[QuotBits-1:0], valid_i};
+  end
+  // Blocking assignments in descending step order: each element is read (the register's value)
+  // before the step below overwrites it, so this is the shift register of nonblocking
+  // assignments, without a simulator's delayed-assignment copy of every element written (an
+  // update flag, a value and a commit per element and clock: half of the lanes' simulation time).
+  // The arrays are read nowhere else (the last stage, read by the post logic, is nonblocking).
+  /* verilator lint_off BLKSEQ */
+  always_ff @(posedge clk_i) begin
+    if (en_i) begin
+      for (int t = QuotBits - 1; t >= 0; t--) begin
+        if (v_q[t]) begin
+          logic [RemBits:0] st;
+          st = div_step(rem_a[t], rest_a[t][RestBits-1], d_a[t]);
+          if (t + 1 < QuotBits) begin
+            side_a[t+1] = side_a[t];
+            rem_a[t+1] = st[RemBits-1:0];
+            rest_a[t+1] = {rest_a[t][RestBits-2:0], 1'b0};
+            quo_a[t+1] = {quo_a[t][QuotBits-2:0], st[RemBits]};
+            d_a[t+1] = d_a[t];
+          end else begin
+            side_l <= side_a[t];
+            rem_l <= st[RemBits-1:0];
+            rest_l <= {rest_a[t][RestBits-2:0], 1'b0};
+            quo_l <= {quo_a[t][QuotBits-2:0], st[RemBits]};
+          end
+        end
       end
-    end
-    if (t + 1 < QuotBits) begin : g_d
-      always_ff @(posedge clk_i) begin
-        if (en_i && v_q[t]) d_q[(t+1)*DBits +: DBits] <= d_q[(t)*DBits +: DBits];
+      if (valid_i) begin
+        side_a[0] = {kind_i, neg_i, n_zero, p_in};
+        rem_a[0] = rem_in;
+        rest_a[0] = rest_in;
+        quo_a[0] = '0;
+        d_a[0] = d_norm;
       end
     end
   end
+  /* verilator lint_on BLKSEQ */
 
   // ---- post ---------------------------------------------------------------------------------
   logic [1:0]              m_kind;
@@ -165,12 +172,9 @@ module fxr_viewport_lane #(
   logic signed [PBits-1:0] m_p;
   logic [QuotBits-1:0]     f;
   logic                    rem_nz;
-  assign m_kind = kind_q[(QuotBits)*2 +: 2];
-  assign m_neg = neg_q[QuotBits];
-  assign m_zero = zero_q[QuotBits];
-  assign m_p = $signed(p_q[(QuotBits)*PBits +: PBits]);
-  assign f = quo_q[(QuotBits)*QuotBits +: QuotBits];
-  assign rem_nz = (|rem_q[(QuotBits)*RemBits +: RemBits]) | (|rest_q[(QuotBits)*RestBits +: RestBits]);
+  assign {m_kind, m_neg, m_zero, m_p} = side_l;
+  assign f = quo_l;
+  assign rem_nz = (|rem_l) | (|rest_l);
 
   // Q4 = jam(F·2^(P+3−QuotBits)) for XW / YW / ZD: a right shift by sr = QuotBits − 3 − P ≥ 0.
   localparam int SrBits = PBits + 1;
