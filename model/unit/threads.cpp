@@ -420,10 +420,17 @@ class FrameRun {
     const size_t p0 = lo + len * (size_t)w / (size_t)T_, p1 = lo + len * (size_t)(w + 1) / (size_t)T_;
     for (size_t p = p0; p < p1; ++p) {
       ++me.stats.prims_in;
+      // The vertex cache's triangle without the geometry chain's copies, as UnitChain::draw.
+      if (const SetupTriangle* t = geometry.cached(tris_[p], (uint32_t)p, me.stats)) {
+        PrimDisposition d;
+        d.add(me.stats, setup.step(*t, [&](const TriangleEquations& eq) { add_triangle(b, eq); }));
+        d.count(me.stats, false);
+        continue;
+      }
       in.prim = (uint32_t)p;
       in.tri = tris_[p];
       pieces.clear();
-      if (!count_geometry(me.stats, geometry.run(in, pieces, me.stats))) continue;
+      if (!count_geometry(me.stats, geometry.run_stages(in, pieces, me.stats))) continue;
       PrimDisposition d;
       d.range = geometry.pieces_rejected() > 0;
       for (const SetupTriangle& t : pieces)
