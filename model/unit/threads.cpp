@@ -167,6 +167,15 @@ class StepSink final : public FragmentSink {
  public:
   FragmentStore* to = nullptr;
   void emit(const Fragment& f) override { to->push_back(f); }
+  // The span path as KeepFragments (model/unit/backend.hpp): a span's records appended in one
+  // copy, or written by the fused span straight into the step's store when the shapes agree
+  // (the default emit_span decoded every record and pushed it back one at a time: on the plane
+  // v0 the 2-thread raster phase did 3.4x the 1-thread work, docs/speed.md "Session 8").
+  void emit_span(const FragmentRecords& b) override { to->append(b); }
+  uint8_t* span_space(size_t max_records, int num_varyings) override {
+    return num_varyings == to->num_varyings() ? to->append_space(max_records) : nullptr;
+  }
+  void span_done(size_t count) override { to->append_commit(count); }
 };
 
 // Worker threads that persist between frames: run(fn) calls fn(w) on threads 0 … n − 1 (0 is the
