@@ -62,18 +62,20 @@ class FragmentSink {
 // run_raster_unit), widened to the varyings of every draw it receives.
 class KeepFragments final : public FragmentSink {
  public:
-  explicit KeepFragments(FragmentStore& out) : out_(out) {}
-  void emit(const Fragment& f) override { out_.push_back(f); }
-  void emit_span(const FragmentRecords& b) override { out_.append(b); }  // one copy
+  explicit KeepFragments(FragmentStore& out) : out_(&out) {}
+  // Appends to `out` from now on (the threaded driver's per-step stores, model/unit/threads.cpp).
+  void retarget(FragmentStore& out) { out_ = &out; }
+  void emit(const Fragment& f) override { out_->push_back(f); }
+  void emit_span(const FragmentRecords& b) override { out_->append(b); }  // one copy
   // The store's own memory when the shapes agree (no copy; else emit_span widens each record).
   uint8_t* span_space(size_t max_records, int num_varyings) override {
-    return num_varyings == out_.num_varyings() ? out_.append_space(max_records) : nullptr;
+    return num_varyings == out_->num_varyings() ? out_->append_space(max_records) : nullptr;
   }
-  void span_done(size_t count) override { out_.append_commit(count); }
-  void draw_state(const DrawState& st) override { out_.widen(st.num_varyings); }
+  void span_done(size_t count) override { out_->append_commit(count); }
+  void draw_state(const DrawState& st) override { out_->widen(st.num_varyings); }
 
  private:
-  FragmentStore& out_;
+  FragmentStore* out_;
 };
 
 // Contract: as raster_triangle, but passing fragments go to `sink` (nullptr: none, and the

@@ -162,22 +162,6 @@ struct alignas(kCacheLineBytes) Worker {
   std::exception_ptr error;
 };
 
-// A fragment sink writing into a thread's current step buffer.
-class StepSink final : public FragmentSink {
- public:
-  FragmentStore* to = nullptr;
-  void emit(const Fragment& f) override { to->push_back(f); }
-  // The span path as KeepFragments (model/unit/backend.hpp): a span's records appended in one
-  // copy, or written by the fused span straight into the step's store when the shapes agree
-  // (the default emit_span decoded every record and pushed it back one at a time: on the plane
-  // v0 the 2-thread raster phase did 3.4x the 1-thread work, docs/speed.md "Session 8").
-  void emit_span(const FragmentRecords& b) override { to->append(b); }
-  uint8_t* span_space(size_t max_records, int num_varyings) override {
-    return num_varyings == to->num_varyings() ? to->append_space(max_records) : nullptr;
-  }
-  void span_done(size_t count) override { to->append_commit(count); }
-};
-
 // Worker threads that persist between frames: run(fn) calls fn(w) on threads 0 … n − 1 (0 is the
 // calling thread) and returns when every call has returned.
 class Pool {
@@ -362,7 +346,8 @@ class FrameRun {
     std::optional<GeometryChain<NoTaps>> geometry;
     std::optional<SetupStage> setup;
     std::optional<FragmentChain<NoTaps>> chain;  // made after the depth buffer exists
-    StepSink to_store;
+    // The step's store, retargeted per step (KeepFragments: the span path, model/unit/backend.hpp).
+    KeepFragments to_store(me.step[0].store);
     std::vector<SetupTriangle> pieces;
     InputTriangle in;
     for (;;) {
@@ -372,8 +357,8 @@ class FrameRun {
           if (ctl_.out_parity >= 0) output(w, ctl_.out_parity);
           if (ctl_.raster >= 0) {
             phase(w, ThreadPhase::Raster);
+            to_store.retarget(me.step[ctl_.rec_parity].store);
             if (!chain) chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, records_ ? &to_store : nullptr, taps);
-            to_store.to = &me.step[ctl_.rec_parity].store;
             raster(w, *chain);
           }
           if (ctl_.setup >= 0) {
