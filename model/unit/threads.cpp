@@ -98,14 +98,15 @@ uint64_t add_weight(uint64_t a, uint64_t b) { return std::min(a + b, kWeightCap)
 
 // A set-up triangle in a batch buffer, beside its equations.
 struct EqMeta {
-  uint64_t start = 0;      // weight of the producer's earlier triangles in the batch
+  uint64_t start = 0;      // weight of the chunk's earlier triangles
   int64_t b0 = 0, b1 = 0;  // bands of its rows y0 and y1
   int64_t chunk = 0;       // rows per raster item (all its rows when it weighs ≤ step_pixels) …
   int64_t items = 0;       // … and the number of items
 };
 
-// Triangles one thread set up from its share of a batch (on cache lines of its own: the other
-// parity's is being filled while the threads read this one).
+// Triangles set up from one chunk of a batch (setup_chunk_prims primitives, claimed by whichever
+// thread comes first; on cache lines of its own: the other parity's chunks are being filled
+// while the threads read this one's).
 struct alignas(kCacheLineBytes) Batch {
   std::vector<TriangleEquations> eqs;  // grown, never shrunk: a frame reuses the last one's
   std::vector<EqMeta> meta;
@@ -152,10 +153,9 @@ struct alignas(kCacheLineBytes) StepRecords {
 // (docs/speed.md "Session 8: threads").
 struct alignas(kCacheLineBytes) Worker {
   RasterStats stats;
-  Batch batch[2];        // by batch parity
   StepRecords step[2];   // by step parity
-  // Raster cursor in the current batch: producer, index in its route list, item of the triangle.
-  int cur_p = 0;
+  // Raster cursor in the current batch: chunk, index in its route list, item of the triangle.
+  size_t cur_p = 0;
   size_t cur_r = 0;
   uint64_t cur_k = 0;
   uint64_t next_start = kNoStart;  // weight where this thread's next item starts (after a step)
@@ -180,6 +180,7 @@ class Pool {
   }
   int size() const { return n_; }
   std::vector<Worker>& workers() { return workers_; }
+  std::vector<Batch> chunks[2];  // a batch's set-up chunks, by batch parity
   bool busy = false;
   size_t last_records = 0;  // records the last frame kept: the next one reserves as many
   SharedVertexTable vertices;  // the threads' vertex cache (docs/speed.md "Session 8: threads")
@@ -270,14 +271,19 @@ void add_stats(RasterStats& to, RasterStats& from) {
 class FrameRun {
  public:
   FrameRun(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris, FrameOutput& f,
-           FragmentStore* keep, FragmentSink* sink, const ThreadOptions& opts, std::vector<Worker>& workers)
-      : cfg_(cfg), st_(st), tris_(tris), f_(f), keep_(keep), sink_(sink), obs_(opts.observer), W_(workers),
-        T_((int)workers.size()), R_(opts.band_rows), B_((size_t)opts.batch_prims), step_((uint64_t)opts.step_pixels),
+           FragmentStore* keep, FragmentSink* sink, const ThreadOptions& opts, Pool& pool)
+      : cfg_(cfg), st_(st), tris_(tris), f_(f), keep_(keep), sink_(sink), obs_(opts.observer), W_(pool.workers()),
+        chunks_{&pool.chunks[0], &pool.chunks[1]}, T_((int)W_.size()), R_(opts.band_rows), B_((size_t)opts.batch_prims),
+        C_(std::min((size_t)opts.setup_chunk_prims, B_)), step_((uint64_t)opts.step_pixels),
         records_(keep != nullptr || sink != nullptr), nv_(records_ ? st.num_varyings : 0),
         nbatches_((int64_t)((tris.size() + B_ - 1) / B_)), barrier_(T_) {
     for (int k = 0; k < 31; ++k)
       if (R_ == (int64_t)1 << k) band_shift_ = k;
-    for (int q = 0; q < 2; ++q) base_weight_[q].assign((size_t)T_, 0), base_tri_[q].assign((size_t)T_, 0);
+    const size_t most = (B_ + C_ - 1) / C_;  // chunks in a batch
+    for (int q = 0; q < 2; ++q) {
+      if (chunks_[q]->size() != most) chunks_[q]->resize(most);
+      base_weight_[q].assign(most, 0), base_tri_[q].assign(most, 0);
+    }
     cursor_.resize((size_t)T_);
   }
 
@@ -301,9 +307,10 @@ class FrameRun {
       for (int q = 0; q < 2; ++q) {
         w.step[q].store.shape(st_.num_varyings);
         w.step[q].runs.clear();
-        w.batch[q].route.resize((size_t)T_);
       }
     }
+    for (int q = 0; q < 2; ++q)
+      for (Batch& b : *chunks_[q]) b.route.resize((size_t)T_);
     // The frame's store grows between steps (serial); a frame like the last needs no growth.
     if (keep_) keep_->reserve(pool.last_records);
     // One vertex cache table for all the threads (a thread's own would miss the vertices the
@@ -315,6 +322,8 @@ class FrameRun {
     }
     ctl_.fill_depth = reuse_depth_;
     ctl_.setup = nbatches_ > 0 ? 0 : -1;
+    nchunks_[0] = (std::min(B_, tris_.size()) + C_ - 1) / C_;
+    next_chunk_.store(0, std::memory_order_relaxed);
     ctl_.done = false;
     auto body = [this, words](int w) {
       if (w == 0 && !reuse_depth_) {
@@ -401,17 +410,28 @@ class FrameRun {
     }
   }
 
-  // Stages 1–5 on this thread's share of batch ctl_.setup; the triangles routed to their bands'
-  // threads and weighted (rows × width, saturating).
+  // Stages 1–5 on the chunks of batch ctl_.setup this thread claims (the next unclaimed one, until
+  // none is left: a thread with less raster work in the step sets up more); the triangles routed
+  // to their bands' threads and weighted (rows × width, saturating).
   void set_up(int w, GeometryChain<NoTaps>& geometry, SetupStage& setup, std::vector<SetupTriangle>& pieces,
               InputTriangle& in) {
+    const int q = (int)(ctl_.setup & 1);
+    const size_t lo = (size_t)ctl_.setup * B_, len = std::min(B_, tris_.size() - lo);
+    for (;;) {
+      const size_t c = next_chunk_.fetch_add(1, std::memory_order_relaxed);
+      if (c >= nchunks_[q]) return;
+      const size_t p0 = lo + c * C_;
+      set_up_chunk(w, (*chunks_[q])[c], p0, std::min(lo + len, p0 + C_), geometry, setup, pieces, in);
+    }
+  }
+
+  // Stages 1–5 on primitives p0 … p1 − 1 into chunk buffer b.
+  void set_up_chunk(int w, Batch& b, size_t p0, size_t p1, GeometryChain<NoTaps>& geometry, SetupStage& setup,
+                    std::vector<SetupTriangle>& pieces, InputTriangle& in) {
     Worker& me = W_[(size_t)w];
-    Batch& b = me.batch[ctl_.setup & 1];
     b.n = 0;
     b.weight = 0;
     for (std::vector<size_t>& r : b.route) r.clear();
-    const size_t lo = (size_t)ctl_.setup * B_, len = std::min(B_, tris_.size() - lo);
-    const size_t p0 = lo + len * (size_t)w / (size_t)T_, p1 = lo + len * (size_t)(w + 1) / (size_t)T_;
     for (size_t p = p0; p < p1; ++p) {
       ++me.stats.prims_in;
       // The vertex cache's triangle without the geometry chain's copies, as UnitChain::draw.
@@ -480,10 +500,10 @@ class FrameRun {
     store.clear();
     runs.clear();
     const int64_t vy = st_.viewport_y;
-    for (; me.cur_p < T_; ++me.cur_p, me.cur_r = 0) {
-      const Batch& b = W_[(size_t)me.cur_p].batch[q];
+    for (; me.cur_p < nchunks_[q]; ++me.cur_p, me.cur_r = 0) {
+      const Batch& b = (*chunks_[q])[me.cur_p];
       const std::vector<size_t>& list = b.route[(size_t)w];
-      const uint64_t base = base_weight_[q][(size_t)me.cur_p], tri0 = base_tri_[q][(size_t)me.cur_p];
+      const uint64_t base = base_weight_[q][me.cur_p], tri0 = base_tri_[q][me.cur_p];
       for (; me.cur_r < list.size(); ++me.cur_r, me.cur_k = 0) {
         const size_t i = list[me.cur_r];
         const EqMeta& m = b.meta[i];
@@ -571,13 +591,14 @@ class FrameRun {
         ctl_.raster_end = add_weight(next, step_);
       }
     }
-    if (ctl_.setup >= 0) {  // batch ctl_.setup is set up: the producers' bases
+    if (ctl_.setup >= 0) {  // batch ctl_.setup is set up: the chunks' bases
       const int q = (int)(ctl_.setup & 1);
       uint64_t wsum = 0, tsum = 0;
-      for (int t = 0; t < T_; ++t) {
-        base_weight_[q][(size_t)t] = wsum, base_tri_[q][(size_t)t] = tsum;
-        wsum = add_weight(wsum, W_[(size_t)t].batch[q].weight);
-        tsum += W_[(size_t)t].batch[q].n;
+      for (size_t c = 0; c < nchunks_[q]; ++c) {
+        const Batch& b = (*chunks_[q])[c];
+        base_weight_[q][c] = wsum, base_tri_[q][c] = tsum;
+        wsum = add_weight(wsum, b.weight);
+        tsum += b.n;
       }
       batch_empty_[q] = tsum == 0;
       set_up_ = ctl_.setup + 1;
@@ -596,7 +617,12 @@ class FrameRun {
       }
     }
     const int64_t busy = ctl_.raster >= 0 ? ctl_.raster : rastered_;
-    if (set_up_ < nbatches_ && set_up_ <= busy + 1) ctl_.setup = set_up_;
+    if (set_up_ < nbatches_ && set_up_ <= busy + 1) {
+      ctl_.setup = set_up_;
+      const size_t lo = (size_t)set_up_ * B_, len = std::min(B_, tris_.size() - lo);
+      nchunks_[set_up_ & 1] = (len + C_ - 1) / C_;
+      next_chunk_.store(0, std::memory_order_relaxed);
+    }
     if (ctl_.raster >= 0) ctl_.rec_parity ^= 1;
     ctl_.done = ctl_.raster < 0 && ctl_.setup < 0 && ctl_.out_parity < 0;
   }
@@ -609,9 +635,10 @@ class FrameRun {
   FragmentSink* sink_;
   ThreadObserver* obs_;
   std::vector<Worker>& W_;
+  std::vector<Batch>* const chunks_[2];  // the pool's chunk buffers, by batch parity
   const int T_;
   const int64_t R_;
-  const size_t B_;
+  const size_t B_, C_;
   const uint64_t step_;
   const bool records_;
   const int nv_;
@@ -635,7 +662,11 @@ class FrameRun {
   size_t out_base_ = 0, out_size_ = 0;  // first record of the step being output; records so far
   int64_t set_up_ = 0, rastered_ = 0;   // batches set up, batches rasterised
   bool batch_empty_[2] = {true, true};
-  std::vector<uint64_t> base_weight_[2], base_tri_[2];  // per producer, by batch parity
+  size_t nchunks_[2] = {0, 0};                          // chunks of the batch, by batch parity
+  std::vector<uint64_t> base_weight_[2], base_tri_[2];  // per chunk, by batch parity
+  // The next chunk of the batch being set up to claim (reset between steps).
+  alignas(kCacheLineBytes) std::atomic<size_t> next_chunk_{0};
+  char pad_[kCacheLineBytes - sizeof(std::atomic<size_t>)];
   // output()'s merge, per thread: each thread's next run and its records before it.
   struct alignas(kCacheLineBytes) OutputCursor {
     std::vector<size_t> head, pos;
@@ -647,10 +678,12 @@ class FrameRun {
 
 void run_raster_unit_threads(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
                              FrameOutput& f, FragmentStore* keep, FragmentSink* sink, const ThreadOptions& opts) {
-  if (opts.threads < 1 || opts.band_rows < 1 || opts.batch_prims < 1 || opts.step_pixels < 1)
+  if (opts.threads < 1 || opts.band_rows < 1 || opts.batch_prims < 1 || opts.step_pixels < 1 ||
+      opts.setup_chunk_prims < 1)
     throw std::invalid_argument("thread options: threads " + std::to_string(opts.threads) + ", band_rows " +
                                 std::to_string(opts.band_rows) + ", batch_prims " + std::to_string(opts.batch_prims) +
-                                ", step_pixels " + std::to_string(opts.step_pixels) + " (each must be ≥ 1)");
+                                ", step_pixels " + std::to_string(opts.step_pixels) + ", setup_chunk_prims " +
+                                std::to_string(opts.setup_chunk_prims) + " (each must be ≥ 1)");
   if (keep && sink) throw std::invalid_argument("run_raster_unit_threads: keep and sink both given");
   if (opts.threads == 1) {  // the sequential chain itself
     KeepFragments keeper(keep ? *keep : f.fragments);
@@ -660,7 +693,7 @@ void run_raster_unit_threads(const Config& cfg, const DrawState& st, const std::
     return;
   }
   PoolLease pool(opts.threads);
-  FrameRun run(cfg, st, tris, f, keep, sink, opts, (*pool).workers());
+  FrameRun run(cfg, st, tris, f, keep, sink, opts, *pool);
   run.run(*pool);
 }
 

@@ -3,9 +3,11 @@
 //
 // Geometry and setup by primitive batches, the back end by interleaved bands of rows, in steps
 // separated by one barrier each:
-//   - the primitives are taken in batches of `batch_prims`; each thread runs stages 1–5 on its
-//     contiguous share of a batch (a pure function of the primitive), counts the primitive's
-//     disposition and routes each set-up triangle to the threads owning one of its bands;
+//   - the primitives are taken in batches of `batch_prims`, cut into chunks of
+//     `setup_chunk_prims`; the threads claim the chunks one at a time, in order, as they come
+//     to them (a thread with less raster work in the step sets up more), run stages 1–5 on a
+//     chunk's primitives (a pure function of the primitive), count each primitive's disposition
+//     and route each set-up triangle to the threads owning one of its bands;
 //   - the window rows are cut into bands of `band_rows` rows, band b (from the viewport's bottom)
 //     belongs to thread b mod threads: a depth-buffer word is touched by one thread only, in the
 //     sequential order, so the depth buffer, every depth-test result and every fragment are
@@ -41,6 +43,8 @@ inline constexpr int kThreadBatchPrims = 2048;
 // Candidate pixels (bounding-box rows × width) per raster step (docs/speed.md: a step's records
 // stay in the threads' caches until they are copied).
 inline constexpr int kThreadStepPixels = 65536;
+// Primitives per setup chunk, the unit the threads claim (docs/speed.md "Session 9: threads").
+inline constexpr int kThreadSetupChunkPrims = 64;
 
 // The phases a thread of run_raster_unit_threads goes through, reported to a ThreadObserver
 // (a bench times them; the model never reads a clock).
@@ -65,6 +69,7 @@ struct ThreadOptions {
   int band_rows = kThreadBandRows;      // ≥ 1
   int batch_prims = kThreadBatchPrims;  // ≥ 1
   int step_pixels = kThreadStepPixels;  // ≥ 1
+  int setup_chunk_prims = kThreadSetupChunkPrims;  // ≥ 1
   ThreadObserver* observer = nullptr;   // phases of every thread (threads ≥ 2), or none
 };
 
@@ -73,7 +78,8 @@ struct ThreadOptions {
 // statistics). The fragments go to `keep` (emptied, then filled with the frame's records;
 // nullptr: not kept) or to `sink` (emitted in order on the calling thread while the triangles
 // are drawn; nullptr: none); with neither, no varyings are computed. Prepares `f`
-// (frame_begin). Invalid options (threads, band_rows, batch_prims or step_pixels < 1):
+// (frame_begin). Invalid options (threads, band_rows, batch_prims, step_pixels or
+// setup_chunk_prims < 1):
 // std::invalid_argument. A call made from inside a sink's emit runs on threads of its own.
 void run_raster_unit_threads(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
                              FrameOutput& f, FragmentStore* keep, FragmentSink* sink, const ThreadOptions& opts);

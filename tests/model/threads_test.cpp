@@ -100,7 +100,8 @@ void check_case(const Case& c, const std::vector<ThreadOptions>& opts) {
   for (const ThreadOptions& o : opts) {
     const std::string what = c.name + " threads " + std::to_string(o.threads) + " band_rows " +
                              std::to_string(o.band_rows) + " batch_prims " + std::to_string(o.batch_prims) +
-                             " step_pixels " + std::to_string(o.step_pixels);
+                             " step_pixels " + std::to_string(o.step_pixels) + " setup_chunk_prims " +
+                             std::to_string(o.setup_chunk_prims);
     expect_same_frame(want, run_raster_unit(c.cfg, c.st, c.tris, c.line_st, c.lines, o), nv, what);
   }
   // A sink receives the same stream; without one the depth buffer and the counters still agree.
@@ -120,6 +121,7 @@ void check_case(const Case& c, const std::vector<ThreadOptions>& opts) {
   for (int threads : {2, 3}) {
     ThreadOptions o;
     o.threads = threads, o.band_rows = 2, o.batch_prims = 5, o.step_pixels = threads == 2 ? 40 : kThreadStepPixels;
+    o.setup_chunk_prims = threads == 2 ? 2 : kThreadSetupChunkPrims;
     Record r;
     r.s.shape(c.st.num_varyings);
     FrameOutput f;
@@ -136,16 +138,20 @@ void check_case(const Case& c, const std::vector<ThreadOptions>& opts) {
 }
 
 // Step sizes: one pixel (every row of a triangle its own raster item, most steps cut bands),
-// a few rows of a small triangle, and the default.
+// a few rows of a small triangle, and the default. Setup chunks of one primitive (a batch of
+// many chunks, claimed by the threads in turn), of three (a batch of 7 ends in a short chunk)
+// and the default.
 std::vector<ThreadOptions> option_grid() {
   std::vector<ThreadOptions> v;
   const int steps[] = {1, 37, kThreadStepPixels};
-  int i = 0;
+  const int chunks[] = {1, 3, kThreadSetupChunkPrims, 3};
+  int i = 0, j = 0;
   for (int t : {1, 2, 3, 7})
     for (int rows : {1, 3, kThreadBandRows})
       for (int batch : {1, 7, kThreadBatchPrims}) {
         ThreadOptions o;
         o.threads = t, o.band_rows = rows, o.batch_prims = batch, o.step_pixels = steps[i++ % 3];
+        o.setup_chunk_prims = chunks[j++ % 4];
         v.push_back(o);
       }
   return v;
@@ -167,7 +173,7 @@ TEST(Threads, DefaultSceneIsBitIdenticalForEveryThreadCount) {
     ThreadOptions o;
     o.threads = t;
     opts.push_back(o);
-    o.band_rows = 1, o.batch_prims = 333;
+    o.band_rows = 1, o.batch_prims = 333, o.setup_chunk_prims = 5;
     opts.push_back(o);
   }
   check_case(c, opts);
@@ -189,7 +195,7 @@ TEST(Threads, RandomOverlapsUnderEveryDepthFunctionScissorAndCulling) {
     for (int t : {2, 3, 7})
       for (int rows : {1, 4}) {
         ThreadOptions o;
-        o.threads = t, o.band_rows = rows, o.batch_prims = 9;
+        o.threads = t, o.band_rows = rows, o.batch_prims = 9, o.setup_chunk_prims = rows == 4 ? 2 : kThreadSetupChunkPrims;
         opts.push_back(o);
       }
     check_case(c, opts);
@@ -200,7 +206,7 @@ TEST(Threads, RandomOverlapsUnderEveryDepthFunctionScissorAndCulling) {
 TEST(Threads, InvalidOptionsAreRejected) {
   const Case c = random_case(1, 3, 0);
   for (ThreadOptions o : {ThreadOptions{0, 8, 10}, ThreadOptions{2, 0, 10}, ThreadOptions{2, 8, 0},
-                          ThreadOptions{2, 8, 10, 0}})
+                          ThreadOptions{2, 8, 10, 0}, ThreadOptions{2, 8, 10, 100, 0}})
     EXPECT_THROW(run_raster_unit(c.cfg, c.st, c.tris, o), std::invalid_argument);
 }
 
@@ -216,6 +222,7 @@ TEST(Threads, LargeTrianglesCutIntoRowChunksAtEveryStepSize) {
     for (int step : {1, 2, 7, 100, 999, kThreadStepPixels}) {
       ThreadOptions o;
       o.threads = t, o.band_rows = 1 + step % 6, o.batch_prims = 1 + step % 10, o.step_pixels = step;
+      o.setup_chunk_prims = 1 + step % 4;
       opts.push_back(o);
     }
   check_case(c, opts);
@@ -463,7 +470,7 @@ TEST(Threads, MeshesThroughTheSharedVertexCacheEqualTheSequentialUnit) {
   // the next draw finds filled by the last (with the draw state it had).
   for (int t : {2, 3}) {
     ThreadOptions o;
-    o.threads = t, o.batch_prims = t == 2 ? 500 : kThreadBatchPrims;
+    o.threads = t, o.batch_prims = t == 2 ? 500 : kThreadBatchPrims, o.setup_chunk_prims = t == 2 ? 7 : 64;
     for (const DrawState& st : {vertex_state(0, 0, 2), vertex_state(-23, 9, 2), vertex_state(0, 0, 0),
                                 vertex_state(0, 0, 2)}) {
       c.st = st;
