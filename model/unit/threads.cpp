@@ -119,7 +119,7 @@ struct alignas(kCacheLineBytes) Batch {
 // in the batch) from row `row` (from the viewport's bottom) up, within one band.
 struct Run {
   unsigned __int128 key;  // tri · 2^64 + row: the sequential order
-  size_t count;
+  size_t first, count;    // its records in the thread's step store (the runs tile the store in order)
 };
 unsigned __int128 run_key(uint64_t tri, int64_t row) { return (unsigned __int128)tri << 64 | (uint64_t)row; }
 bool run_before(const Run& a, const Run& b) { return a.key < b.key; }
@@ -525,7 +525,7 @@ class FrameRun {
             const int64_t lo = std::max(ra, vy + band * R_), hi = std::min(rb, vy + band * R_ + R_ - 1);
             const size_t before = store.size();
             chain.rows(eq, (int)lo, (int)hi);
-            if (store.size() > before) runs.push_back({run_key(tri0 + i, lo - vy), store.size() - before});
+            if (store.size() > before) runs.push_back({run_key(tri0 + i, lo - vy), before, store.size() - before});
           }
         }
       }
@@ -537,37 +537,88 @@ class FrameRun {
   // into the frame's store, thread w writing the w-th of T contiguous parts of the step's range
   // (from every thread's records: were each thread to write its own runs, the bunny's runs of a
   // few records would put both threads' writes on most cache lines of the store), or, on the
-  // calling thread, to the sink.
+  // calling thread, to the sink. The merge starts at the run holding the part's first record
+  // (found by binary search, not by merging the runs before it), and consecutive runs of one
+  // thread go out in one copy (docs/speed.md "Session 9: threads").
   void output(int w, int q) {
     if (!keep_ && !(sink_ && w == 0)) return;
     phase(w, ThreadPhase::Output);
     const size_t n = out_size_ - out_base_;  // the step's records
     const size_t lo = keep_ ? n * (size_t)w / (size_t)T_ : 0, hi = keep_ ? n * (size_t)(w + 1) / (size_t)T_ : n;
+    if (lo >= hi) return;
     OutputCursor& c = cursor_[(size_t)w];
     c.head.assign((size_t)T_, 0);
-    c.pos.assign((size_t)T_, 0);
-    // The runs in the sequential order (a T-way merge by key); `at`: the step's records before
-    // the run.
-    for (size_t at = 0; at < hi;) {
+    const auto runs = [&](int t) -> const std::vector<Run>& { return W_[(size_t)t].step[q].runs; };
+    // The first run of thread t with a key ≥ k, and the step's records before key k.
+    const auto first_at = [&](int t, unsigned __int128 k) {
+      const std::vector<Run>& r = runs(t);
+      return (size_t)(std::lower_bound(r.begin(), r.end(), k, [](const Run& a, unsigned __int128 b) { return a.key < b; }) -
+                      r.begin());
+    };
+    const auto records_before = [&](unsigned __int128 k) {
+      size_t sum = 0;
+      for (int t = 0; t < T_; ++t) {
+        const std::vector<Run>& r = runs(t);
+        const size_t i = first_at(t, k);
+        sum += i < r.size() ? r[i].first : W_[(size_t)t].step[q].store.size();
+      }
+      return sum;
+    };
+    // The run holding record lo: of each thread's last run starting at or before lo (records
+    // before its key ≤ lo: monotone in the run index), the one of the largest key.
+    size_t at = 0;
+    if (lo > 0) {
+      bool found = false;
+      unsigned __int128 start = 0;
+      for (int t = 0; t < T_; ++t) {
+        const std::vector<Run>& r = runs(t);
+        size_t a = 0, b = r.size();  // the runs [0, a) start at or before lo; [b, end) after
+        while (a < b) {
+          const size_t m = a + (b - a) / 2;
+          if (records_before(r[m].key) <= lo) a = m + 1;
+          else b = m;
+        }
+        if (a > 0 && (!found || r[a - 1].key > start)) start = r[a - 1].key, found = true;
+      }
+      if (found) {
+        for (int t = 0; t < T_; ++t) c.head[(size_t)t] = first_at(t, start);
+        at = records_before(start);
+      }
+    }
+    // The runs in the sequential order from there (a T-way merge by key); `at`: the step's
+    // records before the run. A pending copy grows while the runs follow each other in one
+    // thread's store.
+    int pend_t = -1;
+    size_t pend_src = 0, pend_dst = 0, pend_n = 0;
+    const auto flush = [&] {
+      if (pend_n == 0) return;
+      const FragmentStore& src = W_[(size_t)pend_t].step[q].store;
+      if (keep_) keep_->write_at(out_base_ + pend_dst, src, pend_src, pend_n);
+      else sink_->emit_span(FragmentRecords{src.data() + pend_src * src.record_bytes(), pend_n, src.num_varyings()});
+      pend_n = 0;
+    };
+    while (at < hi) {
       int best = -1;
       for (int t = 0; t < T_; ++t) {
-        const std::vector<Run>& r = W_[(size_t)t].step[q].runs;
+        const std::vector<Run>& r = runs(t);
         if (c.head[(size_t)t] == r.size()) continue;
-        if (best < 0 || run_before(r[c.head[(size_t)t]], W_[(size_t)best].step[q].runs[c.head[(size_t)best]])) best = t;
+        if (best < 0 || run_before(r[c.head[(size_t)t]], runs(best)[c.head[(size_t)best]])) best = t;
       }
       if (best < 0) break;
-      const Run& run = W_[(size_t)best].step[q].runs[c.head[(size_t)best]++];
-      const FragmentStore& src = W_[(size_t)best].step[q].store;
-      size_t& p = c.pos[(size_t)best];
+      const Run& run = runs(best)[c.head[(size_t)best]++];
       const size_t a = std::max(at, lo), b = std::min(at + run.count, hi);
       if (a < b) {
-        if (keep_) keep_->write_at(out_base_ + a, src, p + (a - at), b - a);
-        else
-          for (size_t i = p; i < p + run.count; ++i) sink_->emit(src[i]);
+        const size_t src = run.first + (a - at);
+        if (pend_n > 0 && pend_t == best && pend_src + pend_n == src && pend_dst + pend_n == a) {
+          pend_n += b - a;
+        } else {
+          flush();
+          pend_t = best, pend_src = src, pend_dst = a, pend_n = b - a;
+        }
       }
-      p += run.count;
       at += run.count;
     }
+    flush();
   }
 
   // Between two steps, on the last thread to arrive: what the next step does.
@@ -667,9 +718,9 @@ class FrameRun {
   // The next chunk of the batch being set up to claim (reset between steps).
   alignas(kCacheLineBytes) std::atomic<size_t> next_chunk_{0};
   char pad_[kCacheLineBytes - sizeof(std::atomic<size_t>)];
-  // output()'s merge, per thread: each thread's next run and its records before it.
+  // output()'s merge, per thread: each thread's next run.
   struct alignas(kCacheLineBytes) OutputCursor {
-    std::vector<size_t> head, pos;
+    std::vector<size_t> head;
   };
   std::vector<OutputCursor> cursor_;
 };
