@@ -15,8 +15,8 @@ constexpr int kI128Bits = 127;
 // Largest msb an intermediate shifted numerator or denominator may have in the exact division.
 constexpr int kDivMaxMsb = 125;
 
-// RNE(C + (−1)^neg · N·2^k / D), exact (D > 0). *overflow when N·2^k cannot be formed (then the
-// quotient is far beyond every window / depth range and the caller saturates or rejects).
+}  // namespace
+
 i128 rne_quotient_plus(bool neg, u128 N, int k, u128 D, i128 C, bool* overflow) {
   if (N == 0) return C;
   u128 num = N, den = D;
@@ -53,10 +53,89 @@ i128 rne_quotient_plus(bool neg, u128 N, int k, u128 D, i128 C, bool* overflow) 
   return fl;
 }
 
+namespace {
+
 // FxFloat with a zero-exponent-safe view: sig as u128.
 inline u128 sig128(const FxFloat& f) { return (u128)f.sig; }
 
+inline int msb64(uint64_t x) { return 63 - clz64(x); }
+
 }  // namespace
+
+// ---- 64-bit paths (docs/speed.md "Session 9: per triangle") ------------------------------------
+//
+// Each runs rne_quotient_plus / attr_quotient's steps in 64-bit words when its range test shows
+// every intermediate fits (float32 inputs have 24-bit significands: the shifted numerators reach
+// ≈ 2^56 at the default widths), else answers false and the caller takes the i128 path.
+
+bool rne_quotient_plus64(bool neg, uint64_t N, int k, uint64_t D, int64_t C, int64_t* out) {
+  // Range: both operands after the shift and |C| below 2^kAttrFast64Bits (61), so the quotient is below
+  // 2^61, C ± q − 1 fits int64 and 2·frac_num < 2·den < 2^62. D > 0.
+  if (D == 0 || C >= ((int64_t)1 << kAttrFast64Bits) || C <= -((int64_t)1 << kAttrFast64Bits)) return false;
+  if (N == 0) {
+    *out = C;
+    return true;
+  }
+  uint64_t num = N, den = D;
+  if (k >= 0) {
+    if (msb64(N) + k >= kAttrFast64Bits || msb64(D) >= kAttrFast64Bits) return false;
+    num = N << k;
+  } else {
+    if (msb64(D) - k >= kAttrFast64Bits || msb64(N) >= kAttrFast64Bits) return false;  // (the i128 path's
+                                                                                      // |q| < 2^−24 cut-off is past this)
+    den = D << (-k);
+  }
+  const uint64_t q = num / den, r = num % den;
+  int64_t fl;
+  uint64_t frac_num;
+  if (!neg) {
+    fl = C + (int64_t)q;
+    frac_num = r;
+  } else if (r == 0) {
+    *out = C - (int64_t)q;
+    return true;
+  } else {
+    fl = C - (int64_t)q - 1;
+    frac_num = den - r;
+  }
+  const uint64_t twice = frac_num << 1;
+  if (twice > den || (twice == den && (fl & 1))) fl += 1;
+  *out = fl;
+  return true;
+}
+
+bool attr_quotient64(const FxFloat& n, const FxFloat& w, int bits, FxFloat* out) {
+  // Range: bits ≤ 61 (q < 2^(bits+2) ≤ 2^63) and the shifted operand below 2^63; w > 0.
+  if (w.sig == 0 || bits > kAttrFast64Bits) return false;
+  FxFloat f;
+  f.neg = n.neg;
+  if (n.sig == 0) {
+    *out = f;
+    return true;
+  }
+  const int s = bits + 1 + msb64(w.sig) - msb64(n.sig);
+  uint64_t num = n.sig, den = w.sig;
+  if (s >= 0) {
+    if (msb64(n.sig) + s > 62) return false;
+    num <<= s;
+  } else {
+    if (msb64(w.sig) - s > 62) return false;
+    den <<= -s;
+  }
+  const uint64_t q = num / den, r = num % den;
+  const bool rem = r != 0;
+  const int extra = msb64(q) - (bits - 1);  // 1 or 2
+  uint64_t sig = q >> extra;
+  const bool guard = (q >> (extra - 1)) & 1;
+  const bool sticky = rem || (q & ((((uint64_t)1) << (extra - 1)) - 1)) != 0;
+  if (guard && (sticky || (sig & 1))) sig += 1;
+  int e = extra;
+  if (sig >> bits) sig >>= 1, e += 1;
+  f.sig = sig;
+  f.exp = n.exp - s - w.exp + e;
+  *out = f;
+  return true;
+}
 
 void check_attr_widths(const Config& cfg) {
   const RasterConfig& r = cfg.raster;
@@ -79,6 +158,26 @@ void check_attr_widths(const Config& cfg) {
 
 int64_t attr_window(const FxFloat& c, const FxFloat& w, int64_t size, int64_t origin, const RasterConfig& rc,
                     bool* range) {
+  // attr_window_wide's quotient in 64-bit words when it fits (rne_quotient_plus64's range test).
+  const int A = rc.attr_subpixel_bits;
+  int64_t C, v;
+  uint64_t N;
+  if (size > 0 && A >= 1 && A - 1 < kAttrFast64Bits && attr_position_bits(rc) <= 62 &&
+      !__builtin_mul_overflow(size + 2 * origin, (int64_t)1 << (A - 1), &C) &&
+      !__builtin_mul_overflow(c.sig, (uint64_t)size, &N) &&
+      rne_quotient_plus64(c.neg, N, c.exp - w.exp + A - 1, w.sig, C, &v)) {
+    const int64_t lim = (int64_t)1 << (attr_position_bits(rc) - 1);
+    if (v >= lim || v < -lim) {
+      *range = true;
+      return 0;
+    }
+    return v;
+  }
+  return attr_window_wide(c, w, size, origin, rc, range);
+}
+
+int64_t attr_window_wide(const FxFloat& c, const FxFloat& w, int64_t size, int64_t origin, const RasterConfig& rc,
+                         bool* range) {
   const int A = rc.attr_subpixel_bits;  // ≥ 1 (attr_separate: A > subpixel_bits ≥ 0)
   // x·2^A = ±m_c·size·2^(e_c − e_w + A − 1) / m_w + (size + 2·origin)·2^(A − 1)
   const i128 C = (i128)(size + 2 * origin) * ((i128)1 << (A - 1));  // no left shift of a negative value
@@ -94,6 +193,16 @@ int64_t attr_window(const FxFloat& c, const FxFloat& w, int64_t size, int64_t or
 }
 
 uint64_t attr_depth(const FxFloat& z, const FxFloat& w, const RasterConfig& rc) {
+  if (z.sig == 0 || z.neg) return 0;
+  int64_t v;
+  if (rc.z_frac_bits < kAttrFast64Bits && rne_quotient_plus64(false, z.sig, z.exp - w.exp + rc.z_frac_bits, w.sig, 0, &v)) {
+    const int64_t one = (int64_t)1 << rc.z_frac_bits;
+    return (uint64_t)(v > one ? one : v);  // (v ≥ 0: a non-negative quotient)
+  }
+  return attr_depth_wide(z, w, rc);
+}
+
+uint64_t attr_depth_wide(const FxFloat& z, const FxFloat& w, const RasterConfig& rc) {
   if (z.sig == 0 || z.neg) return 0;  // z ≤ 0 saturates to 0
   const i128 one = (i128)1 << rc.z_frac_bits;
   bool ovf = false;
@@ -103,6 +212,12 @@ uint64_t attr_depth(const FxFloat& z, const FxFloat& w, const RasterConfig& rc) 
 }
 
 FxFloat attr_quotient(const FxFloat& n, const FxFloat& w, int bits) {
+  FxFloat out;
+  if (attr_quotient64(n, w, bits, &out)) return out;
+  return attr_quotient_wide(n, w, bits);
+}
+
+FxFloat attr_quotient_wide(const FxFloat& n, const FxFloat& w, int bits) {
   FxFloat out;
   out.neg = n.neg;
   if (n.sig == 0) return out;

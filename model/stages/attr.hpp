@@ -56,6 +56,29 @@ uint64_t attr_depth(const FxFloat& z, const FxFloat& w, const RasterConfig& rc);
 // the exact quotient: one rounding. bits ≤ 62.
 FxFloat attr_quotient(const FxFloat& n, const FxFloat& w, int bits);
 
+// The i128 references of the three above: attr_window, attr_depth and attr_quotient take a
+// 64-bit path when its range test passes and these otherwise (docs/speed.md "Session 9: per
+// triangle"; tests/model/attr_fast64_test.cpp runs both).
+int64_t attr_window_wide(const FxFloat& c, const FxFloat& w, int64_t size, int64_t origin, const RasterConfig& rc,
+                         bool* range);
+uint64_t attr_depth_wide(const FxFloat& z, const FxFloat& w, const RasterConfig& rc);
+FxFloat attr_quotient_wide(const FxFloat& n, const FxFloat& w, int bits);
+
+// Contract: RNE(C + (−1)^neg · N·2^k / D), exact (D > 0; N, D below 2^100 as attr_window,
+// attr_depth pass them). *overflow when N·2^k cannot be formed (then the quotient is far beyond
+// every window / depth range and the caller saturates or rejects). The i128 reference of
+// rne_quotient_plus64.
+i128 rne_quotient_plus(bool neg, u128 N, int k, u128 D, i128 C, bool* overflow);
+
+// The 64-bit paths' bound: shifted operands and offsets below 2^kAttrFast64Bits.
+inline constexpr int kAttrFast64Bits = 61;
+// Contract: true when N·2^k and D (k ≥ 0) or N and D·2^−k (k < 0), and |C|, are below
+// 2^kAttrFast64Bits and D > 0; *out is then RNE(C + (−1)^neg·N·2^k/D), exact. false: out of range, nothing written.
+bool rne_quotient_plus64(bool neg, uint64_t N, int k, uint64_t D, int64_t C, int64_t* out);
+// Contract: true when bits ≤ kAttrFast64Bits, w > 0 and attr_quotient's shifted operand is below
+// 2^63; *out is then attr_quotient(n, w, bits). false: nothing written.
+bool attr_quotient64(const FxFloat& n, const FxFloat& w, int bits, FxFloat* out);
+
 // The attribute triangle of one set-up triangle: relative integer coordinates at F fraction bits.
 struct AttrSetup {
   int F = 0;                 // fraction bits used for this triangle (≤ attr_subpixel_bits)

@@ -191,6 +191,9 @@ struct Block3 {
 // (two's complement). All three zero: q = 0, exp = 0. Rounding never overflows (a carry of
 // the largest to 2^bits still fits int64).
 Block3 align_block(const FxFloat v[3], int bits);
+// The i128 reference of align_block (which takes int64 words where they suffice; tests/model/
+// attr_fast64_test.cpp runs both).
+Block3 align_block_wide(const FxFloat v[3], int bits);
 
 // Per-triangle interpolation setup: the denominator plane and one numerator plane per varying.
 struct InterpSetup {

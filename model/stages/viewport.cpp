@@ -62,7 +62,64 @@ i128 round_scaled_sum(i128 m, int e, i128 c, int sh, bool* range) {
   return shift_round(x, sh + 2, Round::HalfEven);
 }
 
-int64_t snap_window(const FxProd& n0, int64_t size, int64_t origin, const RasterConfig& rc, bool* range) {
+bool round_scaled_sum64(int64_t m, int e, int64_t c, int sh, int64_t* out) {
+  // Range: |m| < 2^kSnapFast64Bits, |c| < 2^(kSnapFast64Bits − 1), sh + 2 ≤ 62, and for e ≥ 0
+  // |m·2^e| < 2^(kSnapFast64Bits − 1) (so m·2^e + c fits), for e < 0 a shift −e ≤ kSnapFast64Bits
+  // (so q, r and (q + c)·4 fit: |q + c| < 2^kSnapFast64Bits). Then the i128 path's steps in int64.
+  constexpr int64_t kM = (int64_t)1 << kSnapFast64Bits, kC = (int64_t)1 << (kSnapFast64Bits - 1);
+  if (m >= kM || m <= -kM || c >= kC || c <= -kC || sh < 0 || sh + 2 > 62) return false;
+  const auto rne = [](int64_t x, int s) {
+    return s == 0 ? x : detail::shift_round_right<int64_t, uint64_t>(x, s, Round::HalfEven);
+  };
+  if (m == 0) {
+    *out = rne(c, sh);
+    return true;
+  }
+  if (e >= 0) {
+    const uint64_t mag = m < 0 ? (uint64_t)0 - (uint64_t)m : (uint64_t)m;
+    if (63 - clz64(mag) + e >= kSnapFast64Bits - 1) return false;
+    *out = rne(m * ((int64_t)1 << e) + c, sh);  // m may be < 0: no <<
+    return true;
+  }
+  const int k = -e;
+  if (k > kSnapFast64Bits) return false;
+  const int64_t q = m >> k;                                     // floor
+  const uint64_t r = (uint64_t)(m - q * ((int64_t)1 << k));    // [0, 2^k)
+  const bool g = (r >> (k - 1)) & 1;
+  const bool s = (r & ((((uint64_t)1) << (k - 1)) - 1)) != 0;
+  const int64_t x = (q + c) * 4 + ((int64_t)g << 1) + (int64_t)s;
+  *out = rne(x, sh + 2);
+  return true;
+}
+
+namespace {
+// snap_window's range check of a code.
+int64_t window_code(i128 code, bool r, const RasterConfig& rc, bool* range) {
+  const int code_bits = rc.window_int_bits + rc.subpixel_bits;  // signed
+  const i128 hi = (((i128)1) << (code_bits - 1)) - 1, lo = -(((i128)1) << (code_bits - 1));
+  if (r || code > hi || code < lo) {
+    *range = true;
+    return 0;
+  }
+  return (int64_t)code;
+}
+}  // namespace
+
+int64_t snap_window(const FxProd& n, int64_t size, int64_t origin, const RasterConfig& rc, bool* range) {
+  // snap_window_wide in 64-bit words when m = n.sig·size and c fit round_scaled_sum64 (n.sig
+  // below 2^64 is below kSnapProdMaxBits: jam leaves it unchanged).
+  const int s = rc.subpixel_bits;
+  uint64_t mag;
+  int64_t c, code;
+  if ((n.sig >> 64) == 0 && size > 0 && s >= 0 && s < 62 &&
+      !__builtin_mul_overflow((uint64_t)n.sig, (uint64_t)size, &mag) && mag < ((uint64_t)1 << kSnapFast64Bits) &&
+      !__builtin_mul_overflow(size + 2 * origin, (int64_t)1 << s, &c) &&
+      round_scaled_sum64(n.neg ? -(int64_t)mag : (int64_t)mag, n.exp + s, c, 1, &code))
+    return window_code(code, false, rc, range);
+  return snap_window_wide(n, size, origin, rc, range);
+}
+
+int64_t snap_window_wide(const FxProd& n0, int64_t size, int64_t origin, const RasterConfig& rc, bool* range) {
   const FxProd n = jam(n0);
   const int s = rc.subpixel_bits;
   // 2·code = n·size·2^s + (size + 2·origin)·2^s, then one RNE halving.
@@ -70,13 +127,7 @@ int64_t snap_window(const FxProd& n0, int64_t size, int64_t origin, const Raster
   const i128 c = (i128)(size + 2 * origin) * ((i128)1 << s);  // origin may be < 0: no <<
   bool r = false;
   const i128 code = round_scaled_sum(n.neg ? -m : m, n.exp + s, c, 1, &r);
-  const int code_bits = rc.window_int_bits + s;  // signed
-  const i128 hi = (((i128)1) << (code_bits - 1)) - 1, lo = -(((i128)1) << (code_bits - 1));
-  if (r || code > hi || code < lo) {
-    *range = true;
-    return 0;
-  }
-  return (int64_t)code;
+  return window_code(code, r, rc, range);
 }
 
 uint64_t snap_depth(const FxProd& zn0, const RasterConfig& rc) {

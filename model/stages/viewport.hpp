@@ -47,6 +47,17 @@ i128 round_scaled_sum(i128 m, int e, i128 c, int sh, bool* range);
 // *range is set (cannot happen inside the guard band; see kGuardMarginPx).
 int64_t snap_window(const FxProd& n, int64_t size, int64_t origin, const RasterConfig& rc, bool* range);
 
+// The i128 reference of snap_window, which takes round_scaled_sum64 when its range test passes
+// (docs/speed.md "Session 9: per triangle"; tests/model/attr_fast64_test.cpp runs both).
+int64_t snap_window_wide(const FxProd& n, int64_t size, int64_t origin, const RasterConfig& rc, bool* range);
+
+// The 64-bit path's bound on |m| (round_scaled_sum64).
+inline constexpr int kSnapFast64Bits = 60;
+// Contract: true when |m| < 2^kSnapFast64Bits, |c| < 2^(kSnapFast64Bits − 1), 0 ≤ sh ≤ 60 and
+// |m·2^e| < 2^(kSnapFast64Bits − 1) (e ≥ 0) or −e ≤ kSnapFast64Bits (e < 0); *out is then
+// round_scaled_sum(m, e, c, sh) (never out of range). false: nothing written.
+bool round_scaled_sum64(int64_t m, int e, int64_t c, int sh, int64_t* out);
+
 // Contract: depth code RNE(z_n · 2^z_frac_bits), saturated to [0, 2^z_frac_bits] (z_n can leave
 // [0, 1] by the reciprocal's rounding and the clipper's rounding of z and w separately).
 uint64_t snap_depth(const FxProd& zn, const RasterConfig& rc);

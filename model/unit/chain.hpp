@@ -144,6 +144,11 @@ class GeometryChain {
     return &cached_;
   }
 
+  // A hint (VertexCache::prefetch): primitive `tri` comes soon; no effect on any output.
+  void prefetch(const ClipTriangle& tri) const {
+    if constexpr (std::is_same<Taps, NoTaps>::value) cache_.prefetch(tri);
+  }
+
   // Pieces of the last run()'s primitive dropped in stage 3 or 4 (its other pieces were emitted).
   uint64_t pieces_rejected() const { return rejected_; }
   // The vertex cache (used without taps only): vertices found / computed.
@@ -320,6 +325,16 @@ class UnitChain {
   UnitChain(const Config& cfg, const DrawState& st, FrameOutput& f, FragmentSink* sink, Taps& taps)
       : stats_(f.stats), geometry_(cfg, st, taps), fragments_(cfg, st, f, sink, taps) {}
 
+  // Contract: draw() of tris[0 … n) in order, primitive numbers first + p. The vertex cache's
+  // slots of primitive p + kVertexCachePrefetchAhead are prefetched before primitive p is drawn
+  // (a hint: the output is draw()'s).
+  void draw_all(const ClipTriangle* tris, size_t n, uint32_t first = 0) {
+    for (size_t p = 0; p < n; ++p) {
+      if (p + kVertexCachePrefetchAhead < n) geometry_.prefetch(tris[p + kVertexCachePrefetchAhead]);
+      draw(tris[p], first + (uint32_t)p);
+    }
+  }
+
   // Contract: one input primitive through every stage. It counts once in the dispositions: as
   // drawn if any of its triangles was rasterised, else by the first reason in the order
   // range > backface > no samples > zero area over its pieces (range: a piece dropped in stage 3
@@ -362,7 +377,7 @@ void run_raster_unit_to(const Config& cfg, const DrawState& st, const std::vecto
                         FrameOutput& f, FragmentSink* sink, Taps& taps) {
   frame_begin(cfg, st, f);
   UnitChain<Taps> chain(cfg, st, f, sink, taps);
-  for (size_t p = 0; p < tris.size(); ++p) chain.draw(tris[p], (uint32_t)p);
+  chain.draw_all(tris.data(), tris.size());
 }
 
 }  // namespace fxr

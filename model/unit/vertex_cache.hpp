@@ -37,19 +37,29 @@ inline constexpr size_t kVertexCacheBytes = size_t{4} << 20;
 // A chain allocates its cache only after this many primitives (fxr::geometry() sets a chain up
 // per primitive; a few primitives gain nothing from it).
 inline constexpr uint64_t kVertexCacheMinPrims = 64;
+// How many primitives ahead UnitChain::draw_all prefetches the vertex cache's slots: 2 (a
+// bunny triangle takes ≈ 0.1 µs… 1 µs; 1, 2 and 4 were within 2 % of each other, docs/speed.md
+// "Session 9: per triangle").
+inline constexpr size_t kVertexCachePrefetchAhead = 2;
 
 // Contract: true when `in`, as a vertex of a triangle whose three vertices all return true,
 // passes stages 1–4 unchanged by the clipper: positions finite, no active varying replaced,
 // strictly inside no clip plane's outside (outcode 0), a reciprocal without error, a snapped
 // position in range; `out` is then its SetupVertex (varyings past nv zero, as snap_vertex).
+// `v`: scratch storage, any contents (its members past the draw's varyings are not read: the
+// caller's one ClipVtx saves a 504-byte zero fill per vertex computed).
 inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardBand& gb, const ClipVertex& in,
-                            SetupVertex& out) {
-  ClipVtx v;
+                            SetupVertex& out, ClipVtx& v) {
   bool nan = false, inf = false, replaced = false;
   convert_vertex(in, st.num_varyings, v, nan, inf, replaced);
   if (nan || inf || replaced || outcode(gb, v) != 0) return false;
   FxFloat r;
   return recip_vertex(cfg.recip, v, r) && snap_vertex(cfg, st, v, r, out) == ProjectStatus::Ok;
+}
+inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardBand& gb, const ClipVertex& in,
+                            SetupVertex& out) {
+  ClipVtx v;
+  return accepted_vertex(cfg, st, gb, in, out, v);
 }
 
 class VertexCache;
@@ -106,12 +116,21 @@ class VertexCache {
     unsigned char* slot[3];
     for (int i = 0; i < 3; ++i) {
       slot[i] = locate(tri.v[i], key[i]);
-      __builtin_prefetch(slot[i]);
+      prefetch_slot(slot[i]);
     }
     for (int i = 0; i < 3; ++i)
       if (!vertex(tri.v[i], key[i], slot[i], out.v[i])) return false;
     out.prim = prim;
     return true;
+  }
+
+  // Contract: a hint without effect on any answer or counter: locates the slots of the vertices
+  // of `tri` (a later triangle of the draw) and prefetches them, so that triangle() for it finds
+  // them in the cache (docs/speed.md "Session 9: per triangle": the table's memory latency was
+  // most of a hit's cost). Nothing before the table exists (the first kVertexCacheMinPrims).
+  void prefetch(const ClipTriangle& tri) const {
+    if (!table_) return;
+    for (int i = 0; i < 3; ++i) prefetch_slot(reinterpret_cast<const unsigned char*>(table_ + index(tri.v[i]) * stride_));
   }
 
   // Contract: this cache looks up and fills `table` (begun for this draw's varying count) instead
@@ -175,14 +194,34 @@ class VertexCache {
     return true;
   }
 
-  // The key words of `cv` (its float32 bits) and its slot.
-  unsigned char* locate(const ClipVertex& cv, uint32_t* key) {
-    std::memcpy(key, cv.pos, sizeof(float) * 4);
-    std::memcpy(key + 4, cv.var, sizeof(float) * (size_t)nv_);
+  // The slot number of a vertex whose key words are `key`.
+  size_t index(const uint32_t* key) const {
     uint64_t h = 0;
     for (size_t k = 0; k < kw_; ++k) h = (h ^ key[k]) * 0x9E3779B97F4A7C15ull;
-    const size_t i = bits_ > 0 ? (size_t)(h >> (64 - bits_)) : 0;
-    return reinterpret_cast<unsigned char*>(table_ + i * stride_);
+    return bits_ > 0 ? (size_t)(h >> (64 - bits_)) : 0;
+  }
+  // The key words of `cv` (its float32 bits).
+  void key_of(const ClipVertex& cv, uint32_t* key) const {
+    std::memcpy(key, cv.pos, sizeof(float) * 4);
+    std::memcpy(key + 4, cv.var, sizeof(float) * (size_t)nv_);
+  }
+  size_t index(const ClipVertex& cv) const {
+    uint32_t key[4 + kMaxVaryings];
+    key_of(cv, key);
+    return index(key);
+  }
+  // Every cache line of a slot (a slot of 144 bytes at 2 varyings spans 3 lines where it starts
+  // past a line's first 32 bytes; the head, key and varyings are all read on a hit).
+  void prefetch_slot(const unsigned char* slot) const {
+    const unsigned char* last = slot + stride_ * sizeof(uint64_t) - 1;
+    for (const unsigned char* p = slot; p <= last; p += kCacheLine) __builtin_prefetch(p);
+    __builtin_prefetch(last);
+  }
+  static constexpr size_t kCacheLine = 64;
+  // The key words of `cv` and its slot.
+  unsigned char* locate(const ClipVertex& cv, uint32_t* key) {
+    key_of(cv, key);
+    return reinterpret_cast<unsigned char*>(table_ + index(key) * stride_);
   }
 
   bool vertex(const ClipVertex& cv, const uint32_t* key, unsigned char* slot, SetupVertex& out) {
@@ -198,7 +237,7 @@ class VertexCache {
     }
     ++misses_;
     std::memcpy(slot + kKeyOffset, key, kw_ * sizeof(uint32_t));
-    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out);
+    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_);
     fill(head, ok, out, slot);
     std::memcpy(slot, &head, sizeof(Head));
     return ok;
@@ -242,7 +281,7 @@ class VertexCache {
       }
     }
     ++misses_;
-    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out);
+    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_);
     uint64_t expect = w0, busy;
     state_seq[1] = seq + 1;  // odd: being written
     std::memcpy(&busy, state_seq, sizeof(uint64_t));
@@ -274,6 +313,7 @@ class VertexCache {
   uint64_t* table_ = nullptr;
   uint32_t epoch_ = 0;
   bool shared_ = false;
+  ClipVtx scratch_;  // accepted_vertex's working vertex
 };
 
 }  // namespace fxr
