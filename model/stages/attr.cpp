@@ -213,8 +213,8 @@ uint64_t attr_depth_wide(const FxFloat& z, const FxFloat& w, const RasterConfig&
 
 FxFloat attr_quotient(const FxFloat& n, const FxFloat& w, int bits) {
   FxFloat out;
-  if (attr_quotient64(n, w, bits, &out)) return out;
-  return attr_quotient_wide(n, w, bits);
+  if (!attr_quotient64(n, w, bits, &out)) out = attr_quotient_wide(n, w, bits);
+  return out;
 }
 
 FxFloat attr_quotient_wide(const FxFloat& n, const FxFloat& w, int bits) {

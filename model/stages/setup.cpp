@@ -112,19 +112,25 @@ Block3 align_block(const FxFloat v[3], int bits) {
   // align_block_wide in int64 (docs/speed.md "Session 9: per triangle"): every significand
   // below 2^63 and every right shift ≤ 62 (shift_round_right's int64 range); a left shift keeps
   // the value below 2^bits ≤ 2^62. Otherwise (a value below ¼ block ulp, or wider) the i128 path.
+  // One return of `b` (a copy of a Block3 written word by word and read back by 16-byte loads
+  // stalled on store forwarding: half of align_block's samples).
   Block3 b;
   int lead = INT_MIN;
   for (int k = 0; k < 3; ++k)
     if (!v[k].is_zero()) lead = std::max(lead, v[k].lead_exp());
-  if (lead == INT_MIN) return b;
-  b.exp = lead - (bits - 1);
-  for (int k = 0; k < 3; ++k) {
-    if (v[k].is_zero()) continue;
-    const int sh = b.exp - v[k].exp;
-    if (sh > detail::kFastMaxShift || (v[k].sig >> 63) != 0) return align_block_wide(v, bits);
-    const int64_t x = (int64_t)v[k].sig;
-    const int64_t m = sh <= 0 ? x << -sh : detail::shift_round_right<int64_t, uint64_t>(x, sh, Round::HalfEven);
-    b.q[k] = v[k].neg ? -m : m;
+  if (lead != INT_MIN) {
+    b.exp = lead - (bits - 1);
+    for (int k = 0; k < 3; ++k) {
+      if (v[k].is_zero()) continue;
+      const int sh = b.exp - v[k].exp;
+      if (sh > detail::kFastMaxShift || (v[k].sig >> 63) != 0) {
+        b = align_block_wide(v, bits);
+        break;
+      }
+      const int64_t x = (int64_t)v[k].sig;
+      const int64_t m = sh <= 0 ? x << -sh : detail::shift_round_right<int64_t, uint64_t>(x, sh, Round::HalfEven);
+      b.q[k] = v[k].neg ? -m : m;
+    }
   }
   return b;
 }
