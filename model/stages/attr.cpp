@@ -429,7 +429,7 @@ DepthSetup attr_depth_setup(const Config& cfg, const SetupTriangle& tri, const A
 bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, bool varyings,
                       TriangleEquations& eq) {
   // The edge terms once for every plane of the triangle: in 64-bit words where they fit.
-  AttrEdgeTerms t;
+  AttrEdgeTerms t{AttrEdgeTerms::Unset{}};  // Done writes every member; Wide assigns t whole
   i128 area2 = 0;
   switch (attr_edge_terms64(cfg, tri, eq.edges, t, &area2)) {
     case AttrTerms64::Done: break;

@@ -105,10 +105,15 @@ Plane make_attr_plane(const AttrSetup& a, const int64_t q[3]);
 // and the value E'_k(centre(i0, j0)); fits64 when all nine fit int64_t (then also in the *64
 // members). A triangle of a few pixels at F = 24 needs ≈ 2^53.
 struct AttrEdgeTerms {
-  i128 dx[3] = {}, dy[3] = {}, e0[3] = {};
-  int64_t dx64[3] = {}, dy64[3] = {}, e064[3] = {};
-  bool fits64 = false;
-  int i0 = 0, j0 = 0;
+  i128 dx[3], dy[3], e0[3];
+  int64_t dx64[3], dy64[3], e064[3];
+  bool fits64;
+  int i0, j0;
+  AttrEdgeTerms() : dx{}, dy{}, e0{}, dx64{}, dy64{}, e064{}, fits64(false), i0(0), j0(0) {}
+  // Members left unset, for a caller that writes every one before reading (attr_plane_setup:
+  // the 240-byte zero fill was a third of its samples, docs/speed.md "Session 9: per triangle").
+  struct Unset {};
+  explicit AttrEdgeTerms(Unset) {}
 };
 AttrEdgeTerms attr_edge_terms(const AttrSetup& a);
 
