@@ -178,10 +178,16 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
     if (range) return ProjectStatus::Range;
     out.z = attr_depth(v.p[2], w, rc);
     static const FxFloat kOne{false, 1, 0};
-    out.rw = attr_quotient(kOne, w, rc.attr_sig_bits);
-    for (int k = 0; k < st.num_varyings; ++k)
-      out.vw[k] = st.interp == InterpMode::Affine ? normalize_fx(v.v[k], rc.attr_sig_bits, Round::HalfEven)
-                                                  : attr_quotient(v.v[k], w, rc.attr_sig_bits);
+    // attr_quotient written in place (its result returned through the stack and copied stalled
+    // on store forwarding: a quarter of snap_vertex's samples).
+    const auto quotient = [&](const FxFloat& n, FxFloat& q) {
+      if (!attr_quotient64(n, w, rc.attr_sig_bits, &q)) q = attr_quotient_wide(n, w, rc.attr_sig_bits);
+    };
+    quotient(kOne, out.rw);
+    for (int k = 0; k < st.num_varyings; ++k) {
+      if (st.interp == InterpMode::Affine) out.vw[k] = normalize_fx(v.v[k], rc.attr_sig_bits, Round::HalfEven);
+      else quotient(v.v[k], out.vw[k]);
+    }
     for (int k = st.num_varyings; k < kMaxVaryings; ++k) out.vw[k] = FxFloat{};
     return ProjectStatus::Ok;
   }
