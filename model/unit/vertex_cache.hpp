@@ -194,6 +194,26 @@ class VertexCache {
     return true;
   }
 
+  // n units of kUnit bytes: a fixed-size copy (inline moves) for n ≤ 8, where a std::memcpy of a
+  // run-time length is a libc call (the key and varying copies: 2.5 % of the bunny's profile).
+  template <size_t kUnit>
+  static void copy_units(void* dst, const void* src, size_t n) {
+    switch (n) {
+      case 0: break;
+      case 1: std::memcpy(dst, src, 1 * kUnit); break;
+      case 2: std::memcpy(dst, src, 2 * kUnit); break;
+      case 3: std::memcpy(dst, src, 3 * kUnit); break;
+      case 4: std::memcpy(dst, src, 4 * kUnit); break;
+      case 5: std::memcpy(dst, src, 5 * kUnit); break;
+      case 6: std::memcpy(dst, src, 6 * kUnit); break;
+      case 7: std::memcpy(dst, src, 7 * kUnit); break;
+      case 8: std::memcpy(dst, src, 8 * kUnit); break;
+      default: std::memcpy(dst, src, n * kUnit);
+    }
+  }
+  void copy_varyings(FxFloat* vw, const unsigned char* from) const {
+    copy_units<sizeof(FxFloat)>(vw, from, (size_t)nv_);
+  }
   // The slot number of a vertex whose key words are `key`.
   size_t index(const uint32_t* key) const {
     uint64_t h = 0;
@@ -202,8 +222,11 @@ class VertexCache {
   }
   // The key words of `cv` (its float32 bits).
   void key_of(const ClipVertex& cv, uint32_t* key) const {
-    std::memcpy(key, cv.pos, sizeof(float) * 4);
-    std::memcpy(key + 4, cv.var, sizeof(float) * (size_t)nv_);
+    // Fixed sizes (a run-time length is a libc call, with the varying copies 2.5 % of the bunny's
+    // profile); the words past 4 + nv_ are never read.
+    static_assert(sizeof(cv.pos) + sizeof(cv.var) == (4 + kMaxVaryings) * sizeof(uint32_t), "key words");
+    std::memcpy(key, cv.pos, sizeof(cv.pos));
+    std::memcpy(key + 4, cv.var, sizeof(cv.var));
   }
   size_t index(const ClipVertex& cv) const {
     uint32_t key[4 + kMaxVaryings];
@@ -240,12 +263,12 @@ class VertexCache {
       std::memcpy(&out.ay, slot + offsetof(Head, ay), sizeof(out.ay));
       std::memcpy(&out.z, slot + offsetof(Head, z), sizeof(out.z));
       std::memcpy(&out.rw, slot + offsetof(Head, rw), sizeof(out.rw));
-      std::memcpy(out.vw, slot + vw_offset_, (size_t)nv_ * sizeof(FxFloat));
+      copy_varyings(out.vw, slot + vw_offset_);
       return true;
     }
     ++misses_;
     Head head;
-    std::memcpy(slot + kKeyOffset, key, kw_ * sizeof(uint32_t));
+    copy_units<sizeof(uint32_t)>(slot + kKeyOffset, key, kw_);
     const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_);
     fill(head, ok, out, slot);
     std::memcpy(slot, &head, sizeof(Head));
@@ -258,7 +281,7 @@ class VertexCache {
     head.state = epoch_ << 2 | (ok ? kAccepted : kNotAccepted);
     if (ok) {
       head.x = out.x, head.y = out.y, head.ax = out.ax, head.ay = out.ay, head.z = out.z, head.rw = out.rw;
-      std::memcpy(slot + vw_offset_, out.vw, (size_t)nv_ * sizeof(FxFloat));
+      copy_units<sizeof(FxFloat)>(slot + vw_offset_, out.vw, (size_t)nv_);
     }
   }
 
