@@ -168,16 +168,47 @@ inline uint64_t div_recip64(const DivConfig& c, uint64_t d) {
 inline uint64_t div_recip64_estimate(uint64_t num, uint64_t R) { return (uint64_t)(((u128)num * R) >> 64); }
 // The quotient for n, d ≠ 0 with the widths as arguments (w = div_align_bits, nb, db, qb of the
 // configuration; constants where the caller knows them, model/stages/interp_span.hpp).
-inline DivSig div_sig_recip64_w(int w, int nb, int db, int qb, uint64_t n, uint64_t d, uint64_t R) {
-  const uint64_t a = n << (w - nb), b = d << (w - db);
-  const int k = a < b ? 1 : 0;
-  const uint64_t num = (a << k) << (qb - 1);       // exact: < 2^(W+qb) ≤ 2^63
-  uint64_t q = div_recip64_estimate(num, R);       // q − 1 or q
+// The correction and RNE from the estimate q0 ∈ {q − 1, q} of num / b (exp_adj −k).
+inline DivSig div_recip64_correct(uint64_t q, uint64_t num, uint64_t b, int qb, int k) {
   uint64_t r = num - q * b;                        // in [0, 2b)
   const uint64_t fix = r >= b ? 1 : 0;
   q += fix;
   r -= fix * b;
   return round_increment(q, rne_round_up<uint64_t>(q, r, b), qb, -k);
+}
+inline DivSig div_sig_recip64_w(int w, int nb, int db, int qb, uint64_t n, uint64_t d, uint64_t R) {
+  const uint64_t a = n << (w - nb), b = d << (w - db);
+  const int k = a < b ? 1 : 0;
+  const uint64_t num = (a << k) << (qb - 1);       // exact: < 2^(W+qb) ≤ 2^63
+  return div_recip64_correct(div_recip64_estimate(num, R), num, b, qb, k);  // estimate: q − 1 or q
+}
+
+// ---- the estimate's fraction decides (docs/speed.md "Session 9: the pixel loop") -------------
+// div_sig_recip64_w without the remainder where the estimate's low word already decides. The
+// product num·R = q0·2^64 + f (f < 2^64) and num / b = q0 + (f + δ)/2^64 with
+//   δ = num·(2^64 − b·R)/b,  0 < δ ≤ num < B = 2^(W+qb)
+// (b·R ≤ 2^64 − 1 < 2^64, and 2^64 − b·R ≤ b since R = ⌊(2^64 − 1)/b⌋). So when
+//   f < 2^63 − B:       f + δ < 2^63: q = q0 and the fraction is below ½ (round down);
+//   2^63 ≤ f < 2^64 − B: 2^63 < f + δ < 2^64: q = q0 and the fraction is above ½, never a tie
+//                        (δ > 0; round up);
+// only f in the two bands [2^63 − B, 2^63) (a tie or near one) and [2^64 − B, 2^64) (the
+// estimate may be q − 1) need the remainder (div_recip64_correct). f is in a band iff
+// (f + B) mod 2^63 < B (B = 2^63 at W + qb = 63: always). At the defaults B = 2^56: 1 / 128 of
+// uniform fractions take the remainder. Contract: as div_sig_recip64_w (returns exactly its
+// result; tests/model/div_test.cpp DivRecip64Frac.*: every operand pair of five 12-bit shapes,
+// 10^7 random + ties, the bands' edges; 10^8 in div_slow_test.cpp).
+inline bool div_recip64_frac_decides(uint64_t f, uint64_t band) {
+  return ((f + band) & (~uint64_t{0} >> 1)) >= band;
+}
+inline DivSig div_sig_recip64_frac_w(int w, int nb, int db, int qb, uint64_t n, uint64_t d, uint64_t R) {
+  const uint64_t a = n << (w - nb), b = d << (w - db);
+  const int k = a < b ? 1 : 0;
+  const uint64_t num = (a << k) << (qb - 1);  // exact: < 2^(W+qb) ≤ 2^63
+  const u128 p = (u128)num * R;
+  const uint64_t q0 = (uint64_t)(p >> 64), f = (uint64_t)p;
+  if (__builtin_expect(div_recip64_frac_decides(f, uint64_t{1} << (w + qb)), 1))
+    return round_increment(q0, (f >> 63) != 0, qb, -k);
+  return div_recip64_correct(q0, num, b, qb, k);
 }
 inline DivSig div_sig_recip64(const DivConfig& c, uint64_t n, uint64_t d, uint64_t R) {
   if (d == 0) return {(uint64_t{1} << c.quot_bits) - 1, 0};  // saturated (div_sig contract)

@@ -382,7 +382,30 @@ struct NormalizeAtMsb {
     e = m + carry;
     return q;
   }
+  // True when the significand lies above the low 64-bit word (shift > 64): rne_high_word applies
+  // with high_shift() and high_bias().
+  bool high_word() const { return shift > 64; }
+  int high_shift() const { return shift - 64; }
+  uint64_t high_bias() const { return (uint64_t)(bias >> 64); }
 };
+
+// NormalizeAtMsb's rounding in words only, for a shift above one word (docs/speed.md "Session 9:
+// the pixel loop"): x = hi·2^W + lo (W = the Word's bits), shift = W + s with s ≥ 1. The bias
+// 2^(shift−1) − 1 is hb·2^W + (2^W − 1) with hb = 2^(s−1) − 1, so in x + bias + bit_shift(x)
+// the low word carries into the high one exactly when lo ≠ 0 or the odd bit (bit s of hi) is
+// set, and what is left of the low word is shifted out:
+//   (x + bias + odd) >> shift = (hi + hb + [lo ≠ 0 ∨ odd]) >> s.
+// Contract: 1 ≤ s ≤ W − 2, hb = 2^(s−1) − 1, hi < 2^(W−1) (msb(x) ≤ 2W − 2: no overflow,
+// hi + hb + 1 < 2^(W−1) + 2^(W−3)); returns RNE(x·2^−shift) before the carry-out
+// renormalisation (2^bits possible), the value NormalizeAtMsb::sig_bits shifts back.
+// Tests/model/fixed_test.cpp: every x of two 8-bit words exhaustively, the 64-bit words at every
+// msb × width with the directed ties (against GMP), 10^6 random; fixed_slow_test.cpp 10^8.
+template <class Word>
+constexpr Word rne_high_word(Word hi, Word lo, int s, Word hb) {
+  const Word odd = (Word)((Word)(hi >> s) & 1u);
+  const Word c = (Word)((lo | odd) != 0 ? 1 : 0);
+  return (Word)((Word)(hi + hb + c) >> s);
+}
 
 // Contract: normalises x > 0 (x < 2^127) to a `bits`-bit significand with its msb set
 //   (1 ≤ bits ≤ 64). Drops low bits by rounding mode r; if rounding carries out (sig == 2^bits),

@@ -13,8 +13,12 @@
 //     sum keeps its sign and binade (its msb), found by testing the segment's last value and, where
 //     a sum leaves, by one division for the exact exit pixel; inside a segment each normalisation
 //     is NormalizeAtMsb (model/arith/fixed.hpp: one add and one shift, no leading-zero count);
-//   - one reciprocal of D's significand per pixel and per varying one multiply and the exact
-//     remainder check (div_sig_recip64_w, model/arith/div.hpp): div_sig_fast64's result;
+//     where every sum's significand lies above its low 64-bit word (shift > 64: the default
+//     planes), the segment normalises in 64-bit words (rne_high_word, fixed.hpp) with the
+//     exponents' segment constants folded, and D's reciprocal is computed one pixel ahead;
+//   - one reciprocal of D's significand per pixel and per varying one multiply, the rounding
+//     decided by the estimate's fraction outside a narrow band, else by the exact remainder
+//     (div_sig_recip64_frac_w, model/arith/div.hpp): div_sig_fast64's result;
 //   - the default divider widths and 0, 1, 2 varyings as compile-time constants (other widths and
 //     counts: the same code with run-time values).
 // Applies where the stage divides with div_sig_fast64 (radix2, W + qb ≤ 63: every default).
@@ -75,6 +79,7 @@ class FusedSpan {
     uint64_t segments = 0;               // segments (> spans: some sum left its binade)
     uint64_t exits_divided = 0;          // segment ends found by the exit division
     uint64_t sign_changes = 0;           // a sum re-armed with the other sign
+    uint64_t segments_high = 0;          // segments normalised in 64-bit words (rne_high_word)
   };
   const Counts& counts() const { return counts_; }
 
@@ -96,6 +101,8 @@ class FusedSpan {
 
   // The varyings of each record run() writes (the draw's, or 0 without varyings).
   int num_varyings() const { return nv_; }
+  // false: every segment takes the u128 normalisations (the tests run both and compare).
+  void set_high_words(bool on) { high_words_ = on; }
 
   // True when every exponent this triangle's fragments can have fits the compact record
   // (|exp| ≤ kStoredExpMax, model/unit/fragment_store.hpp): the quotient's exponent is
@@ -281,6 +288,62 @@ class FusedSpan {
         nzero[m] = lane_zero && num_[m].zero();
       }
       const int64_t end = i + len;
+      bool high = kOut && nv > 0 && high_words_ && den_pos && !lane_zero && den_.norm.high_word();
+      for (int m = 0; m < nv; ++m) high = high && num_[m].norm.high_word();
+      if (high) {
+        // Every sum's significand above its low word (the default planes): the normalisations
+        // in 64-bit words (rne_high_word), the exponents' segment constants folded into eb[m].
+        ++counts_.segments_high;
+        const int ds = dnorm.high_shift(), dm = dnorm.m + ed;
+        const uint64_t dhb = dnorm.high_bias();
+        int ns[kN], eb[kN];
+        uint64_t nhb[kN];
+        bool nneg[kN];
+        for (int m = 0; m < nv; ++m) {
+          ns[m] = num_[m].norm.high_shift();
+          nhb[m] = num_[m].norm.high_bias();
+          eb[m] = num_[m].norm.m + nexp[m] - dm;
+          nneg[m] = num_[m].neg;
+        }
+        uint64_t dn = 0, Rn = 0;
+        int cdn = 0;
+        auto den_sig = [&](u128 v) {
+          dn = rne_high_word<uint64_t>((uint64_t)(v >> 64), (uint64_t)v, ds, dhb);
+          cdn = (int)(dn >> wd.db);  // the rounding's carry-out: 0 or 1
+          dn >>= cdn;
+          Rn = div_recip64_w(wd.w, wd.db, dn);
+        };
+        den_sig(dmag);
+        for (; i < end; ++i) {
+          const uint32_t code = z.code();
+          bool pass = true;
+          if (codes) {
+            uint32_t& stored = codes[i - x0];
+            pass = (mask >> depth_relation(code, stored)) & 1u;
+            if (pass && write) stored = code;
+          }
+          pass_count += pass ? 1 : 0;
+          // D's significand and reciprocal for this pixel were computed one pixel ahead (the
+          // division issues while the previous pixel's quotients are still being worked on).
+          const uint64_t d = dn, R = Rn;
+          const int cd = cdn;
+          dmag += dstep;
+          if (i + 1 < end) den_sig(dmag);
+          if (pass) {
+            put_fragment_header(rec, prim, (int32_t)i, y, code);
+            for (int m = 0; m < nv; ++m) {
+              uint64_t a = rne_high_word<uint64_t>((uint64_t)(nmag[m] >> 64), (uint64_t)nmag[m], ns[m], nhb[m]);
+              const int cn = (int)(a >> wd.nb);
+              a >>= cn;
+              const DivSig q = div_sig_recip64_frac_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
+              put_fragment_var(rec, m, q.sig, q.exp_adj + cn - cd + eb[m], nneg[m]);
+            }
+            rec += stride;
+          }
+          z.step_x();
+          for (int m = 0; m < nv; ++m) nmag[m] += num_[m].step;
+        }
+      }
       for (; i < end; ++i) {
         const uint32_t code = z.code();
         bool pass = true;
@@ -307,7 +370,7 @@ class FusedSpan {
                 }
                 int ne;
                 const uint64_t a = num_[m].norm.sig_bits(nmag[m], ne, wd.nb);
-                const DivSig q = div_sig_recip64_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
+                const DivSig q = div_sig_recip64_frac_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
                 put_fragment_var(rec, m, q.sig, q.exp_adj + ne + nexp[m] - de, num_[m].neg);
               }
             }
@@ -335,6 +398,7 @@ class FusedSpan {
   bool test_, write_;
   Widths widths_;
   bool default_widths_;
+  bool high_words_ = true;  // the 64-bit-word segments (the tests turn them off to compare)
   Sum den_;
   Sum num_[kMaxVaryings];
   Counts counts_;

@@ -13,8 +13,11 @@ using namespace fxr;
 namespace {
 
 // div_sig_fast64 (and, with recip, div_sig_recip64: one reciprocal per pixel) against div_sig_exact.
-uint64_t count_mismatches(const DivConfig& c, uint64_t count, uint64_t seed, bool recip = false) {
+// frac: div_sig_recip64_frac_w (the estimate's fraction decides outside its band).
+uint64_t count_mismatches(const DivConfig& c, uint64_t count, uint64_t seed, bool recip = false, bool frac = false) {
   auto fast = [&](uint64_t n, uint64_t d) {
+    if (frac)
+      return div_sig_recip64_frac_w(div_align_bits(c), c.num_bits, c.den_bits, c.quot_bits, n, d, div_recip64(c, d));
     return recip ? div_sig_recip64(c, n, d, div_recip64(c, d)) : div_sig_fast64(c, n, d);
   };
   std::mt19937_64 rng(seed);
@@ -77,5 +80,17 @@ TEST(DivRecip64Slow, BitIdenticalToExactAtTheWidthLimit) {
   for (const DivConfig& c : {shape(39, 39, 24), shape(32, 32, 31), shape(20, 39, 24)}) {
     ASSERT_TRUE(div_fast64_ok(c));
     EXPECT_EQ(count_mismatches(c, 10'000'000, 202, true), 0u) << c.num_bits << "/" << c.den_bits << "/" << c.quot_bits;
+  }
+}
+
+// The estimate's fraction decides (div_sig_recip64_frac_w, docs/speed.md "Session 9: the pixel loop").
+TEST(DivRecip64FracSlow, BitIdenticalToExactOnHundredMillionAtDefaultWidths) {
+  const DivConfig c;
+  EXPECT_EQ(count_mismatches(c, 100'000'000, 301, true, true), 0u);
+}
+
+TEST(DivRecip64FracSlow, BitIdenticalToExactAtTheWidthLimit) {
+  for (const DivConfig& c : {shape(39, 39, 24), shape(32, 32, 31), shape(20, 39, 24)}) {
+    EXPECT_EQ(count_mismatches(c, 10'000'000, 302, true, true), 0u) << c.num_bits << "/" << c.den_bits << "/" << c.quot_bits;
   }
 }

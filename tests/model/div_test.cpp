@@ -498,3 +498,78 @@ TEST(DivRecip64, DirectedHardCases) {
   expect_fast_path_on_hard_cases(
       [](const DivConfig& c, uint64_t n, uint64_t d) { return div_sig_recip64(c, n, d, div_recip64(c, d)); });
 }
+
+// ---- the estimate's fraction decides (div_sig_recip64_frac_w, docs/speed.md "Session 9: the
+// pixel loop") -------------------------------------------------------------------------------
+// Against div_sig_exact and the independent reference; each test checks that both the fraction
+// alone and the remainder decided (the band taken and not).
+
+namespace {
+
+DivSig recip64_frac(const DivConfig& c, uint64_t n, uint64_t d) {
+  if (d == 0) return {(uint64_t{1} << c.quot_bits) - 1, 0};
+  if (n == 0) return {0, 0};
+  return div_sig_recip64_frac_w(div_align_bits(c), c.num_bits, c.den_bits, c.quot_bits, n, d, div_recip64(c, d));
+}
+// Whether the fraction alone decided (n, d) (the predicate the path takes).
+bool frac_decided(const DivConfig& c, uint64_t n, uint64_t d) {
+  const int w = div_align_bits(c);
+  const uint64_t a = n << (w - c.num_bits), b = d << (w - c.den_bits);
+  const uint64_t num = (a < b ? a << 1 : a) << (c.quot_bits - 1);
+  const uint64_t f = (uint64_t)((u128)num * div_recip64(c, d));
+  return div_recip64_frac_decides(f, uint64_t{1} << (w + c.quot_bits));
+}
+
+}  // namespace
+
+// The band test at its edges: B = 2^56 (the defaults) and B = 2^63 (W + qb = 63: never decides).
+TEST(DivRecip64Frac, TheBandTestAtItsEdges) {
+  const uint64_t B = 1ull << 56, h = 1ull << 63;
+  for (uint64_t f : {uint64_t{0}, h - B - 1, h, ~uint64_t{0} - B}) EXPECT_TRUE(div_recip64_frac_decides(f, B)) << f;
+  for (uint64_t f : {h - B, h - 1, ~uint64_t{0} - B + 1, ~uint64_t{0}}) EXPECT_FALSE(div_recip64_frac_decides(f, B)) << f;
+  for (uint64_t f : {uint64_t{0}, h - 1, h, ~uint64_t{0}, uint64_t{12345}}) EXPECT_FALSE(div_recip64_frac_decides(f, h));
+}
+
+// Every operand pair of six 12-bit shapes (W + qb = 24 … 63; at 12/12/48 the band is 1/8 of the
+// fractions, so decisions next to it are frequent).
+TEST(DivRecip64Frac, BitIdenticalToExactForAll12BitOperands) {
+  uint64_t decided = 0, remainder = 0;
+  for (const DivConfig& c : {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14),
+                             shape(DivAlgorithm::Radix2, 9, 12, 10), shape(DivAlgorithm::Radix2, 11, 11, 4),
+                             shape(DivAlgorithm::Radix2, 12, 12, 48), shape(DivAlgorithm::Radix2, 12, 12, 51)}) {
+    ASSERT_TRUE(div_fast64_ok(c));
+    const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
+    for (uint64_t d = dlo; d < 2 * dlo; ++d)
+      for (uint64_t n = nlo; n < 2 * nlo; ++n) {
+        const DivSig f = recip64_frac(c, n, d);
+        ASSERT_EQ(f, div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+        ASSERT_EQ(f, ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+        (frac_decided(c, n, d) ? decided : remainder) += 1;
+      }
+  }
+  EXPECT_GT(decided, 1000000u);
+  EXPECT_GT(remainder, 100000u);
+}
+
+// 10^7 random plus constructed ties (all in the band: a tie's fraction is ½ − δ) at the defaults,
+// 10^6 at the limit shapes.
+TEST(DivRecip64Frac, BitIdenticalOnTenMillionPlusTiesAtDefaultAndEdgeWidths) {
+  std::vector<DivConfig> cs = {DivConfig{}};
+  for (const DivConfig& c : fast64_edge_shapes())
+    if (c.num_bits == c.den_bits) cs.push_back(c);
+  cs.push_back(shape(DivAlgorithm::Radix2, 32, 32, 28));  // W + qb = 60: the band 1/8
+  for (const DivConfig& c : cs) {
+    uint64_t mismatches = 0, decided = 0, remainder = 0;
+    random_and_ties(c, c.num_bits == 32 && c.quot_bits == 24 ? 10'000'000 : 1'000'000, 23,
+                    [&](uint64_t n, uint64_t d) {
+                      if (recip64_frac(c, n, d) != div_sig_exact(c, n, d) && ++mismatches <= 5)
+                        ADD_FAILURE() << div_label(c) << " n=" << n << " d=" << d;
+                      if ((n & 63) == 0) (frac_decided(c, n, d) ? decided : remainder) += 1;
+                    });
+    EXPECT_EQ(mismatches, 0u) << div_label(c);
+    EXPECT_GT(remainder, 0u) << div_label(c);
+    if (div_align_bits(c) + c.quot_bits < 63) EXPECT_GT(decided, 0u) << div_label(c);
+  }
+}
+
+TEST(DivRecip64Frac, DirectedHardCases) { expect_fast_path_on_hard_cases(recip64_frac); }

@@ -1,6 +1,7 @@
 // The 64-bit fast paths of model/arith/fixed.hpp at 10^8 random cases each (slow label; the
 // directed and GMP-checked cases are in fixed_test.cpp, docs/speed.md):
 //   normalize()'s 64-bit-word path (normalize_rne64) against the generic u128 path;
+//   rne_high_word (the fused span's normalisation in 64-bit words) against NormalizeAtMsb's u128 path;
 //   udivmod128 / floor_divmod (the hardware 128-by-64 division) against the compiler's i128 / and %.
 #include <gtest/gtest.h>
 
@@ -29,6 +30,32 @@ TEST(Normalize64Slow, EqualsTheU128PathOn1e8RandomValues) {
     }
     const Normalized f = detail::normalize_rne64(x, bits), g = detail::normalize_u128(x, bits, Round::HalfEven);
     if (f.sig != g.sig || f.exp != g.exp || f.inexact != g.inexact) ++mism;
+  }
+  EXPECT_EQ(mism, 0);
+}
+
+// rne_high_word (NormalizeAtMsb's rounding in 64-bit words, shift > 64) against the u128 path.
+TEST(NormalizeHighWordSlow, EqualsTheU128PathOn1e8RandomValues) {
+  std::mt19937_64 rng(1165);
+  long mism = 0, n = 0;
+  while (n < kCases) {
+    const uint64_t r0 = rng(), r1 = rng();
+    const int m = 65 + (int)(r0 % 62), bits = 1 + (int)((r0 >> 8) % 63);
+    const NormalizeAtMsb at(bits, m);
+    if (!at.high_word()) continue;
+    ++n;
+    u128 x = ((((u128)r1 << 64) | rng()) & ((((u128)1) << m) - 1)) | ((u128)1 << m);
+    if ((r0 >> 20) % 8 == 0) {  // a tie or a tie ± 1 at this width
+      const int shift = m - (bits - 1);
+      x = ((x >> shift) << shift) | ((u128)1 << (shift - 1));
+      x += (u128)((int)((r0 >> 24) % 3) - 1);
+    }
+    int e = 0;
+    const uint64_t want = at.sig_bits(x, e, bits);
+    uint64_t q = rne_high_word<uint64_t>((uint64_t)(x >> 64), (uint64_t)x, at.high_shift(), at.high_bias());
+    const int carry = (int)(q >> bits);
+    q >>= carry;
+    if (q != want || m + carry != e) ++mism;
   }
   EXPECT_EQ(mism, 0);
 }

@@ -136,6 +136,16 @@ Normalized ref_normalize(u128 x, int bits) {
       return ::testing::AssertionFailure() << "NormalizeAtMsb x = 0x" << std::hex << (uint64_t)(x >> 64) << "_"
                                            << (uint64_t)x << std::dec << " bits " << bits << ": got sig " << s1
                                            << " exp " << e1 << ", GMP sig " << r.sig << " exp " << r.exp;
+    // And in 64-bit words where the significand lies above the low word (rne_high_word).
+    if (at.high_word()) {
+      uint64_t q = rne_high_word<uint64_t>((uint64_t)(x >> 64), (uint64_t)x, at.high_shift(), at.high_bias());
+      const int carry = (int)(q >> bits);
+      q >>= carry;
+      if (q != r.sig || at.m + carry != r.exp)
+        return ::testing::AssertionFailure() << "rne_high_word x = 0x" << std::hex << (uint64_t)(x >> 64) << "_"
+                                             << (uint64_t)x << std::dec << " bits " << bits << ": got sig " << q
+                                             << " exp " << at.m + carry << ", GMP sig " << r.sig << " exp " << r.exp;
+    }
   }
   return ::testing::AssertionSuccess();
 }
@@ -185,6 +195,64 @@ TEST(Normalize64, EqualsTheU128PathAndGmpOnTiesCarriesAndExactValues) {
     }
   ASSERT_TRUE(same_normalize(~(u128)0 >> 1, 63));
   ASSERT_TRUE(same_normalize(~(u128)0 >> 1, 1));
+}
+
+// ---- rne_high_word: NormalizeAtMsb's rounding in words (docs/speed.md "Session 9: the pixel loop")
+
+namespace {
+// RNE(x·2^−shift) from the definition (floor, then the dropped part against half; ties to even),
+// before any carry-out renormalisation.
+uint64_t ref_rne_shift(u128 x, int shift) {
+  const u128 q = x >> shift, rest = x - (q << shift), half = (u128)1 << (shift - 1);
+  return (uint64_t)(q + ((rest > half || (rest == half && (q & 1))) ? 1 : 0));
+}
+}  // namespace
+
+// Two 8-bit words (W = 8): every x with msb m ≤ 2W − 2 = 14 at every shift W + s, 1 ≤ s ≤ m − W
+// (bits = m − shift + 1 ≥ 1), exhaustively: 1.6·10^5 cases, every tie, carry and sticky pattern.
+TEST(NormalizeHighWord, EqualsTheDefinitionForEveryValueOfTwoEightBitWords) {
+  uint64_t cases = 0, ties = 0, carries = 0;
+  for (uint32_t x = 1; x < (1u << 15); ++x) {
+    const int m = msb_index((u128)x);
+    for (int s = 1; 8 + s <= m; ++s) {
+      const int shift = 8 + s;
+      const uint8_t hb = (uint8_t)((1u << (s - 1)) - 1);
+      const uint8_t got = rne_high_word<uint8_t>((uint8_t)(x >> 8), (uint8_t)x, s, hb);
+      const uint64_t want = ref_rne_shift(x, shift);
+      ASSERT_EQ((uint64_t)got, want) << "x " << x << " shift " << shift;
+      ++cases;
+      ties += (x & ((1u << shift) - 1)) == (1u << (shift - 1)) ? 1 : 0;
+      carries += (want >> (m - shift + 1)) != 0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(cases, 150000u);
+  EXPECT_GT(ties, 100u);
+  EXPECT_GT(carries, 100u);
+}
+
+// 64-bit words: 10^6 random values (a quarter of them ties and tie ± 1) at every msb 65..126
+// and width with shift > 64, against the definition (the GMP-checked directed cases are in
+// same_normalize above, every msb × width).
+TEST(NormalizeHighWord, EqualsTheDefinitionOnAMillionRandom64BitWordValues) {
+  std::mt19937_64 rng(1165);
+  uint64_t mism = 0, high = 0;
+  for (int i = 0; i < 1000000; ++i) {
+    const uint64_t r0 = rng();
+    const int m = 65 + (int)(r0 % 62), bits = 1 + (int)((r0 >> 8) % 63);
+    const NormalizeAtMsb at(bits, m);
+    if (!at.high_word()) continue;
+    ++high;
+    u128 x = random_at_msb(rng, m);
+    const int shift = m - (bits - 1);
+    if ((r0 >> 20) % 4 == 0) {
+      x = ((x >> shift) << shift) | ((u128)1 << (shift - 1));
+      x += (u128)((int)((r0 >> 24) % 3) - 1);
+    }
+    const uint64_t got = rne_high_word<uint64_t>((uint64_t)(x >> 64), (uint64_t)x, at.high_shift(), at.high_bias());
+    if (got != ref_rne_shift(x, shift) && ++mism <= 5) ADD_FAILURE() << "m " << m << " bits " << bits;
+  }
+  EXPECT_EQ(mism, 0u);
+  EXPECT_GT(high, 500000u);
 }
 
 // ---- udivmod128 / floor_divmod (docs/speed.md "Wide divisions with a narrow quotient") ------

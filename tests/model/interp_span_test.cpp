@@ -87,15 +87,21 @@ std::vector<ClipTriangle> grazing_plane(int nv, float w_far) {
 FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
                           const std::string& what) {
   const size_t words = (size_t)(st.viewport_w) * (size_t)st.viewport_h;
-  std::vector<uint32_t> buf_staged(words, (1u << cfg.raster.depth_bits()) - 1), buf_fused = buf_staged;
+  std::vector<uint32_t> buf_staged(words, (1u << cfg.raster.depth_bits()) - 1), buf_fused = buf_staged,
+                                                                                buf_u128 = buf_staged;
   const DepthBufferView vs{buf_staged.data(), st.viewport_w, st.viewport_x, st.viewport_y};
   const DepthBufferView vf{buf_fused.data(), st.viewport_w, st.viewport_x, st.viewport_y};
+  const DepthBufferView vu{buf_u128.data(), st.viewport_w, st.viewport_x, st.viewport_y};
   SetupStage setup(cfg, st, true);
   TraverseStage traverse(cfg, st);
   InterpStage interp(cfg, st, true);
   DepthStage depth(cfg, st, vs);
   DivideStage divide(cfg, st, true);
   FusedSpan fused(cfg, st, vf, true);
+  // The same with every segment's normalisations in u128 (no 64-bit-word segments): both loops
+  // against the staged path.
+  FusedSpan fused_u128(cfg, st, vu, true);
+  fused_u128.set_high_words(false);
   RasterStats gs;
   std::vector<SetupTriangle> pieces;
   // Both buffers first hold the nearest codes of the odd-numbered triangles (a staged "less"
@@ -117,6 +123,7 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
         });
     }
     buf_fused = buf_staged;
+    buf_u128 = buf_staged;
   }
   uint64_t frags = 0, bad = 0, fails = 0;
   for (size_t p = 0; p < tris.size(); ++p) {
@@ -131,22 +138,28 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
             if (depth.step(ps, [&](const PlaneSample& q) { divide.step(q, [&](const Fragment& f) { want.push_back(f); }); }))
               ++pass_staged;
           });
-          const uint64_t pass_fused = fused.run(eq, sp, [&](const Fragment& f) { got.push_back(f); });
           frags += want.size();
           fails += (uint64_t)(sp.x1 - sp.x0 + 1) - pass_staged;
-          if (pass_fused != pass_staged || want.size() != got.size()) {
-            if (++bad <= 3) ADD_FAILURE() << what << ": span y " << sp.y << " x " << sp.x0 << ".." << sp.x1 << " passes " << pass_staged << " vs " << pass_fused;
-            return;
-          }
-          for (size_t i = 0; i < want.size(); ++i) {
-            if (!same_fragment(want[i], got[i], st.num_varyings) && ++bad <= 3)
-              ADD_FAILURE() << what << ": fragment (" << want[i].x << ", " << want[i].y << ") prim " << want[i].prim;
+          for (FusedSpan* fs : {&fused, &fused_u128}) {
+            got.clear();
+            const uint64_t pass_fused = fs->run(eq, sp, [&](const Fragment& f) { got.push_back(f); });
+            const char* path = fs == &fused ? "" : " (u128 segments)";
+            if (pass_fused != pass_staged || want.size() != got.size()) {
+              if (++bad <= 3) ADD_FAILURE() << what << path << ": span y " << sp.y << " x " << sp.x0 << ".." << sp.x1 << " passes " << pass_staged << " vs " << pass_fused;
+              continue;
+            }
+            for (size_t i = 0; i < want.size(); ++i) {
+              if (!same_fragment(want[i], got[i], st.num_varyings) && ++bad <= 3)
+                ADD_FAILURE() << what << path << ": fragment (" << want[i].x << ", " << want[i].y << ") prim " << want[i].prim;
+            }
           }
         });
       });
   }
   EXPECT_EQ(bad, 0u) << what;
   EXPECT_TRUE(buf_staged == buf_fused) << what << ": depth buffers differ";
+  EXPECT_TRUE(buf_staged == buf_u128) << what << ": depth buffers differ (u128 segments)";
+  EXPECT_EQ(fused_u128.counts().segments_high, 0u) << what;
   if (st.depth_func != DepthFunc::Never) {
     EXPECT_GT(frags, 0u) << what << ": nothing drawn (the test would be vacuous)";
   }
@@ -166,7 +179,7 @@ Config widths_config(int nb, int db, int qb) {
 
 void add(FusedSpan::Counts& a, const FusedSpan::Counts& b) {
   a.spans += b.spans, a.spans_z128 += b.spans_z128, a.spans_zconst += b.spans_zconst, a.segments += b.segments;
-  a.exits_divided += b.exits_divided, a.sign_changes += b.sign_changes;
+  a.exits_divided += b.exits_divided, a.sign_changes += b.sign_changes, a.segments_high += b.segments_high;
 }
 
 // A tap (any tap type but NoTaps makes FragmentChain take the staged stages).
@@ -225,6 +238,8 @@ TEST(FusedSpan, RandomTrianglesUnderEveryDepthStateEqualTheStagedPath) {
   EXPECT_GT(total.segments, total.spans);  // sums left their binade inside spans
   EXPECT_GT(total.exits_divided, 0u);
   EXPECT_GT(total.sign_changes, 0u);       // and crossed zero
+  EXPECT_GT(total.segments_high, 100u);    // both loops
+  EXPECT_GT(total.segments - total.segments_high, 100u);
 }
 
 TEST(FusedSpan, GrazingPlanesAcrossBinadesAndZeroEqualTheStagedPath) {
@@ -236,6 +251,10 @@ TEST(FusedSpan, GrazingPlanesAcrossBinadesAndZeroEqualTheStagedPath) {
     }
   EXPECT_GT(total.segments, 2 * total.spans);
   EXPECT_GT(total.sign_changes, 0u);
+  // Both loops of the fused path: segments in 64-bit words and in u128 (a sum at zero, D ≤ 0, a
+  // binade at or below 2^95).
+  EXPECT_GT(total.segments_high, 100u);
+  EXPECT_GT(total.segments - total.segments_high, 100u);
 }
 
 TEST(FusedSpan, OtherDividerWidthsAndAffineModeEqualTheStagedPath) {
