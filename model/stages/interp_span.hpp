@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "model/arith/div.hpp"
@@ -292,18 +293,17 @@ class FusedSpan {
       for (int m = 0; m < nv; ++m) high = high && num_[m].norm.high_word();
       if (high) {
         // Every sum's significand above its low word (the default planes): the normalisations
-        // in 64-bit words (rne_high_word), the exponents' segment constants folded into eb[m].
+        // in 64-bit words (rne_high_word), each exponent word from its segment constant hw[m].
         ++counts_.segments_high;
         const int ds = dnorm.high_shift(), dm = dnorm.m + ed;
         const uint64_t dhb = dnorm.high_bias();
-        int ns[kN], eb[kN];
+        int ns[kN];
         uint64_t nhb[kN];
-        bool nneg[kN];
+        uint32_t hw[kN];
         for (int m = 0; m < nv; ++m) {
           ns[m] = num_[m].norm.high_shift();
           nhb[m] = num_[m].norm.high_bias();
-          eb[m] = num_[m].norm.m + nexp[m] - dm;
-          nneg[m] = num_[m].neg;
+          hw[m] = ((uint32_t)(num_[m].norm.m + nexp[m] - dm) << 1) | (num_[m].neg ? 1u : 0u);
         }
         uint64_t dn = 0, Rn = 0;
         int cdn = 0;
@@ -336,7 +336,10 @@ class FusedSpan {
               const int cn = (int)(a >> wd.nb);
               a >>= cn;
               const DivSig q = div_sig_recip64_frac_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
-              put_fragment_var(rec, m, q.sig, q.exp_adj + cn - cd + eb[m], nneg[m]);
+              // put_fragment_var's words: the exponent word (exp << 1 | neg) from its segment
+              // constant hw[m] = eb[m] << 1 | neg plus twice the pixel's part (mod 2^32).
+              const uint32_t wv[2] = {(uint32_t)q.sig, hw[m] + 2u * (uint32_t)(q.exp_adj + cn - cd)};
+              std::memcpy(rec + kFragmentHeaderBytes + (size_t)m * kFragmentVaryingBytes, wv, sizeof wv);
             }
             rec += stride;
           }

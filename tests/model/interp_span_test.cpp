@@ -511,3 +511,67 @@ TEST(FusedSpan, WideDepthSpansWithOneCodeOrSteppedEqualTheStagedPath) {
   EXPECT_GT(total.spans_zconst, 100u);
   EXPECT_GT(total.spans_z128, 10u);
 }
+
+// The significands' rounding carry-outs inside the 64-bit-word segments, directed: D and the
+// numerators set (on a real triangle's equations) to planes in the binade [2^100, 2^101) that
+// step by 2^60 through 2^101 − 2^68 — the value whose top 32 bits round up to 2^32 (a tie
+// rounding to even there: the kept part is odd) — and on to just below 2^101, so that D's and
+// each numerator's normalisation carries out (d = 2^31, exponent + 1) on some pixels and not on
+// the others; both signs of N. Every fragment against the staged stages, with and without the
+// word segments.
+TEST(FusedSpan, SignificandCarryOutsInTheWordSegmentsEqualTheStagedPath) {
+  const int nv = 2;
+  DrawState st = viewport_state(nv);
+  st.depth_test = false;
+  const Config cfg;
+  std::vector<uint32_t> buf((size_t)kW * kH, 0);
+  const DepthBufferView view{buf.data(), st.viewport_w, st.viewport_x, st.viewport_y};
+  SetupStage setup(cfg, st, true);
+  std::vector<SetupTriangle> pieces;
+  RasterStats gs;
+  geometry(cfg, st, grazing_plane(nv, 8.0f)[0], 0, pieces, gs);
+  ASSERT_FALSE(pieces.empty());
+  TriangleEquations eq;
+  bool got_eq = false;
+  setup.step(pieces[0], [&](const TriangleEquations& e) { eq = e, got_eq = true; });
+  ASSERT_TRUE(got_eq);
+  const i128 top = (i128)1 << 101, cut = top - ((i128)1 << 68), step = (i128)1 << 60;
+  const int x0 = 10, y = 20;
+  uint64_t frags = 0, bad = 0;
+  FusedSpan::Counts counts;
+  for (int variant = 0; variant < 4; ++variant) {
+    Plane p;
+    p.dx = step, p.dy = 0, p.i0 = x0, p.j0 = y;
+    p.c = cut - (i128)(3 + variant) * step;  // the carry-out starts at pixel 3 + variant
+    eq.interp.den = p;
+    eq.interp.num[0] = p;
+    eq.interp.num[0].c -= (i128)variant * step;  // a numerator whose carry-out starts later
+    eq.interp.num[1] = p;
+    eq.interp.num[1].c = -(cut - (i128)(5 - variant) * step), eq.interp.num[1].dx = -step;  // negative
+    eq.interp.n = nv;
+    Span sp;
+    sp.y = y, sp.x0 = x0, sp.x1 = x0 + 15;
+    ASSERT_LT(eq.interp.den.at(sp.x1, y), top);  // one binade over the span
+    std::vector<Fragment> want;
+    InterpStage interp(cfg, st, true);
+    DepthStage depth(cfg, st, view);
+    DivideStage divide(cfg, st, true);
+    interp.step(eq, sp, [&](const PlaneSample& ps) {
+      depth.step(ps, [&](const PlaneSample& q) { divide.step(q, [&](const Fragment& f) { want.push_back(f); }); });
+    });
+    ASSERT_EQ(want.size(), 16u);
+    for (bool high : {true, false}) {
+      FusedSpan fused(cfg, st, view, true);
+      fused.set_high_words(high);
+      std::vector<Fragment> got;
+      fused.run(eq, sp, [&](const Fragment& f) { got.push_back(f); });
+      ASSERT_EQ(got.size(), want.size());
+      for (size_t i = 0; i < want.size(); ++i) bad += same_fragment(want[i], got[i], nv) ? 0 : 1;
+      frags += got.size();
+      if (high) add(counts, fused.counts());
+    }
+  }
+  EXPECT_EQ(bad, 0u);
+  EXPECT_EQ(frags, 4u * 2u * 16u);
+  EXPECT_GE(counts.segments_high, 4u);  // the word segments ran these spans
+}
