@@ -195,7 +195,7 @@ inline DivSig div_sig_recip64_w(int w, int nb, int db, int qb, uint64_t n, uint6
 // estimate may be q − 1) need the remainder (div_recip64_correct). f is in a band iff
 // (f + B) mod 2^63 < B (B = 2^63 at W + qb = 63: always). At the defaults B = 2^56: 1 / 128 of
 // uniform fractions take the remainder. Contract: as div_sig_recip64_w (returns exactly its
-// result; tests/model/div_test.cpp DivRecip64Frac.*: every operand pair of five 12-bit shapes,
+// result; tests/model/div_test.cpp DivRecip64Frac.*: every operand pair of six 12-bit shapes,
 // 10^7 random + ties, the bands' edges; 10^8 in div_slow_test.cpp).
 inline bool div_recip64_frac_decides(uint64_t f, uint64_t band) {
   return ((f + band) & (~uint64_t{0} >> 1)) >= band;

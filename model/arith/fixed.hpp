@@ -398,7 +398,7 @@ struct NormalizeAtMsb {
 // Contract: 1 ≤ s ≤ W − 2, hb = 2^(s−1) − 1, hi < 2^(W−1) (msb(x) ≤ 2W − 2: no overflow,
 // hi + hb + 1 < 2^(W−1) + 2^(W−3)); returns RNE(x·2^−shift) before the carry-out
 // renormalisation (2^bits possible), the value NormalizeAtMsb::sig_bits shifts back.
-// Tests/model/fixed_test.cpp: every x of two 8-bit words exhaustively, the 64-bit words at every
+// tests/model/fixed_test.cpp: every x of two 8-bit words exhaustively, the 64-bit words at every
 // msb × width with the directed ties (against GMP), 10^6 random; fixed_slow_test.cpp 10^8.
 template <class Word>
 constexpr Word rne_high_word(Word hi, Word lo, int s, Word hb) {
