@@ -81,6 +81,15 @@ class FusedSpan {
     uint64_t exits_divided = 0;          // segment ends found by the exit division
     uint64_t sign_changes = 0;           // a sum re-armed with the other sign
     uint64_t segments_high = 0;          // segments normalised in 64-bit words (rne_high_word)
+    // The span start's cursor (begin / run; docs/speed.md "Session 9: the span start"):
+    uint64_t cursor_starts = 0;   // first spans of a triangle: the planes and the depth divided
+    uint64_t cursor_moves = 0;    // later spans: every value moved from the last span start
+    uint64_t spans_z64 = 0;       // spans stepped in int64_t from the depth cursor
+    uint64_t z_moves_divided = 0;  // cursor moves of the depth that divided (|Δx| > 1 or Δy > 1)
+    uint64_t z_cursor_lost = 0;   // triangles whose depth cursor failed a bound (then per span)
+    uint64_t rearmed_moves = 0;   // sums that left their binade or sign between two span starts
+    uint64_t rearmed_sign_moves = 0;  // of them with the other sign
+    uint64_t sums_fixed = 0;      // sums whose sign and binade hold over a whole triangle
   };
   const Counts& counts() const { return counts_; }
 
@@ -116,21 +125,89 @@ class FusedSpan {
     return worst + std::abs((int64_t)t.interp.den_exp) + kExpSlack <= kStoredExpMax;
   }
 
-  // Contract: stages 7–9 on span `sp` of `t` (fits(t)): the same passing pixels, depth-buffer
-  // writes and fragment values (x, y, depth, prim, var[0 … nv−1]) as the staged chain, left to
-  // right. out != nullptr: each passing pixel's fragment is written to `out` as a compact record
-  // of num_varyings() varyings (FragmentStore's layout; room for sp.x1 − sp.x0 + 1 records);
-  // nullptr: nothing is written (no sink). Returns the number of passing pixels.
+  // Contract: the spans that follow (run) belong to triangle `t` until the next begin(). run()
+  // calls it itself when handed another TriangleEquations object; a caller that rewrites one
+  // object with the next triangle (SetupStage's output) must call it per triangle, as
+  // FragmentChain::run / rows do. Cheap: the cursor is set up at the first span.
+  void begin(const TriangleEquations& t) {
+    tri_ = &t;
+    started_ = false;
+    fits_ = fits(t);
+    if (test_) {  // the depth words of the candidate rectangle's first rows: read by the spans soon
+      const TriSetup& e = t.edges;
+      const int rows = std::min(e.y1 - e.y0 + 1, kPrefetchRows);
+      if (rows > 0 && e.x1 >= e.x0) {
+        const uint32_t* p = buf_.codes + ((int64_t)e.y0 - buf_.y0) * (int64_t)buf_.width + ((int64_t)e.x0 - buf_.x0);
+        const int64_t last = (int64_t)e.x1 - e.x0;
+        for (int k = 0; k < rows; ++k, p += buf_.width) {
+          __builtin_prefetch(p, 1);
+          __builtin_prefetch(p + last, 1);
+        }
+      }
+    }
+  }
+  // fits(t) for the triangle of the last begin(t) (begins it when `t` is another object).
+  bool fits_begun(const TriangleEquations& t) {
+    if (&t != tri_) begin(t);
+    return fits_;
+  }
+
+  // Contract: stages 7–9 on span `sp` of `t` (fits(t); begin(t) called since `t` last changed,
+  // see begin()): the same passing pixels, depth-buffer writes and fragment values (x, y, depth,
+  // prim, var[0 … nv−1]) as the staged chain, left to right. out != nullptr: each passing
+  // pixel's fragment is written to `out` as a compact record of num_varyings() varyings
+  // (FragmentStore's layout; room for sp.x1 − sp.x0 + 1 records); nullptr: nothing is written
+  // (no sink). Returns the number of passing pixels.
+  // The span start: at the triangle's first span the planes are evaluated at (x0, y) and the
+  // depth divided (DepthStepper); at later spans a cursor moves every value from the last span
+  // start (a plane by Δy·dy + Δx·dx; the sums keep their binade and normaliser unless they left
+  // it; the depth quotient by DepthCursor, int64_t where its bound holds).
   uint64_t run(const TriangleEquations& t, const Span& sp, uint8_t* out) {
     ++counts_.spans;
-    const DepthStepper dz(t.depth, sp.x0, sp.y);
-    const int64_t n = (int64_t)sp.x1 - sp.x0 + 1;
-    if (nv_ > 0) {
-      den_.start(t.interp.den, sp, dc_.den_bits);
-      for (int m = 0; m < nv_; ++m) num_[m].start(t.interp.num[m], sp, dc_.num_bits);
+    if (&t != tri_) begin(t);
+    const TriSetup& e = t.edges;
+    // Every span of traversal lies in the candidate rectangle; what the cursor proves holds there.
+    const bool inside = sp.x0 >= e.x0 && sp.x1 <= e.x1 && sp.y >= e.y0 && sp.y <= e.y1;
+    if (!started_) {
+      started_ = true;
+      ++counts_.cursor_starts;
+      cx_ = sp.x0, cy_ = sp.y;
+      if (nv_ > 0) {
+        den_.start(t.interp.den, sp, dc_.den_bits, val_[0], e, inside);
+        for (int m = 0; m < nv_; ++m) num_[m].start(t.interp.num[m], sp, dc_.num_bits, val_[1 + m], e, inside);
+        counts_.sums_fixed += den_.fixed ? 1 : 0;
+        for (int m = 0; m < nv_; ++m) counts_.sums_fixed += num_[m].fixed ? 1 : 0;
+      }
+      const DepthStepper dz(t.depth, sp.x0, sp.y);
+      z_cursor_ = inside && zcur_.start(dz, sp.x0, sp.y, e.x0, e.x1, e.y0, e.y1);
+      if (z_cursor_) return run_w(t, sp, zcur_.stepper(), out);
+      ++counts_.z_cursor_lost;
+      return run_w(t, sp, dz, (int64_t)sp.x1 - sp.x0 + 1, out);
     }
-    if (default_widths_) return run_z(t, sp, dz, n, DefaultWidths{}, out);
-    return run_z(t, sp, dz, n, widths_, out);
+    ++counts_.cursor_moves;
+    const int64_t ddx = (int64_t)sp.x0 - cx_, ddy = (int64_t)sp.y - cy_;
+    cx_ = sp.x0, cy_ = sp.y;
+    if (nv_ > 0) {
+      // The common step (the next row, x0 moved by at most one pixel) adds a precomputed delta.
+      const int sel = ddy == 1 && ddx >= -1 && ddx <= 1 ? (int)ddx + 1 : -1;
+      if (!inside) {  // not proven there: every sum checks its binade from now on
+        den_.fixed = false;
+        for (int m = 0; m < nv_; ++m) num_[m].fixed = false;
+      }
+      den_.move(t.interp.den, sel, ddx, ddy, val_[0], counts_);
+      for (int m = 0; m < nv_; ++m) num_[m].move(t.interp.num[m], sel, ddx, ddy, val_[1 + m], counts_);
+    }
+    if (z_cursor_) {
+      const int moved = inside ? zcur_.move(t.depth, sp.x0, sp.y) : 0;
+      if (moved) {
+        counts_.z_moves_divided += moved == DepthCursor::kMovedDivided ? 1 : 0;
+        return run_w(t, sp, zcur_.stepper(), out);
+      }
+      z_cursor_ = false;
+      ++counts_.z_cursor_lost;
+    }
+    const DepthStepper dz(t.depth, sp.x0, sp.y);
+    return run_w(t, sp, dz, (int64_t)sp.x1 - sp.x0 + 1, out);
   }
   // The same handing each passing pixel's Fragment to emit(const Fragment&) (the tests).
   template <class Emit>
@@ -156,6 +233,21 @@ class FusedSpan {
     static constexpr int w = nb > db ? nb : db;  // div_align_bits
   };
 
+  static constexpr int kPrefetchRows = 8;  // begin()'s prefetch: the bunny's rectangles are 1–8 rows
+
+  // The divider widths as compile-time constants where they are the defaults.
+  uint64_t run_w(const TriangleEquations& t, const Span& sp, const DepthStepperT<int64_t>& z, uint8_t* out) {
+    ++counts_.spans_z64;
+    if (default_widths_) return run_nv(t, sp, z, DefaultWidths{}, out);
+    return run_nv(t, sp, z, widths_, out);
+  }
+  uint64_t run_w(const TriangleEquations& t, const Span& sp, const DepthStepper& dz, int64_t n, uint8_t* out) {
+    if (default_widths_) return run_z(t, sp, dz, n, DefaultWidths{}, out);
+    return run_z(t, sp, dz, n, widths_, out);
+  }
+
+  // The span's depth from a fresh DepthStepper (no cursor): int64_t where the span fits, one
+  // value where the code is constant, else i128.
   template <class W>
   uint64_t run_z(const TriangleEquations& t, const Span& sp, const DepthStepper& dz, int64_t n, const W& wd,
                  uint8_t* out) {
@@ -191,6 +283,8 @@ class FusedSpan {
     }
   }
 
+ public:
+  // (Public for its tests, SpanSum.* in tests/model/interp_span_test.cpp.)
   // A plane sum along the span as sign and magnitude, the magnitude stepped directly (by −dx for
   // a negative sum, mod 2^128: the signed value is always ±mag exactly), with the normaliser of
   // its binade [lo, lo + width) (zero: [0, 1)). A sum is affine in x, so it leaves its binade a
@@ -198,14 +292,66 @@ class FusedSpan {
   struct Sum {
     u128 mag = 0, step = 0, lo = 0, width = 1;
     i128 dx = 0;
+    u128 row[3] = {};     // the common moves' deltas: dy − dx, dy, dy + dx
+    bool fixed = false;   // sign and binade hold over the triangle's candidate rectangle
     bool neg = false;
     int bits = 1;
     NormalizeAtMsb norm;
 
-    void start(const Plane& p, const Span& sp, int bits_) {
+    // The triangle's first span: the plane evaluated at its start (kept in `v`, the cursor), the
+    // deltas of the common move (next row, x0 moved by −1, 0, +1) and whether the sign and binade
+    // hold over the whole candidate rectangle `e` (`inside`: the span lies in it). An affine sum
+    // takes its extremes on a rectangle at its corners: from v, min / max of (x − x0)·dx over
+    // x ∈ {e.x0, e.x1} plus the same in y. When both extremes lie in the binade, every value of
+    // every span does, and neither the moves nor run_length test it (`fixed`).
+    void start(const Plane& p, const Span& sp, int bits_, u128& v, const TriSetup& e, bool inside) {
       bits = bits_;
       dx = p.dx;
-      arm(p.at(sp.x0, sp.y));
+      v = (u128)p.at(sp.x0, sp.y);
+      arm((i128)v);
+      row[0] = (u128)p.dy - (u128)p.dx, row[1] = (u128)p.dy, row[2] = (u128)p.dy + (u128)p.dx;
+      fixed = false;
+      if (!inside) return;
+      const i128 ax = (i128)((int64_t)e.x0 - sp.x0) * p.dx, bx = (i128)((int64_t)e.x1 - sp.x0) * p.dx;
+      const i128 ay = (i128)((int64_t)e.y0 - sp.y) * p.dy, by = (i128)((int64_t)e.y1 - sp.y) * p.dy;
+      const i128 lowv = (i128)v + std::min(ax, bx) + std::min(ay, by);
+      const i128 highv = (i128)v + std::max(ax, bx) + std::max(ay, by);
+      fixed = in_binade(lowv) && in_binade(highv);
+    }
+    // v has the current sign and binade (zero: v = 0 in the zero binade).
+    bool in_binade(i128 v) const {
+      if (v == 0) return mag == 0;
+      if ((v < 0) != neg) return false;
+      const u128 m = v < 0 ? (u128)0 - (u128)v : (u128)v;
+      return m - lo < width;
+    }
+    // A later span of the same triangle: the value at its start is the last start's `v` plus
+    // Δy·dy + Δx·dx (row[sel] for the common moves; mod 2^128: the true value fits i128, so the
+    // sum is exact). The binade and normaliser are kept when the value stayed in them with its
+    // sign (set; no test when fixed), else re-armed.
+    void move(const Plane& p, int sel, int64_t ddx, int64_t ddy, u128& v, Counts& k) {
+      v += sel >= 0 ? row[sel] : (u128)p.dy * (u128)ddy + (u128)p.dx * (u128)ddx;
+      if (fixed) {
+        mag = neg ? (u128)0 - v : v;
+        return;
+      }
+      const bool was = neg;
+      if (set((i128)v)) return;
+      ++k.rearmed_moves;
+      k.rearmed_sign_moves += was != neg ? 1 : 0;
+    }
+    // Contract: the state arm(v) gives (mag, neg, step, lo, width, norm); true when the binade
+    // and normaliser were kept (v has the sign and binade of the current ones), false when
+    // re-armed. Tested against arm: SpanSum.* in tests/model/interp_span_test.cpp.
+    bool set(i128 v) {
+      const bool n = v < 0;
+      const u128 m = n ? (u128)0 - (u128)v : (u128)v;
+      if (n == neg && m - lo < width) {
+        mag = m;
+        return true;
+      }
+      arm(v);
+      return false;
     }
     void arm(i128 v) {
       neg = v < 0;
@@ -224,6 +370,7 @@ class FusedSpan {
     // its last value is inside (the sum is monotone; a value that crossed zero is ≥ 2^127 mod
     // 2^128, never inside), else the exact exit by one division.
     int64_t run_length(int64_t limit, Counts& k) {
+      if (fixed) return limit;  // the whole triangle is in this binade (start)
       if (mag - lo >= width) {
         const bool was = neg;
         arm(neg ? -(i128)mag : (i128)mag);
@@ -242,6 +389,8 @@ class FusedSpan {
     }
     bool zero() const { return width == 1 && lo == 0; }
   };
+
+ private:
 
   template <int NV, bool kOut, class Z, class W>
   uint64_t loop(const TriangleEquations& t, const Span& sp, const Z& z_start, const W& wd, uint8_t* out) {
@@ -404,6 +553,12 @@ class FusedSpan {
   bool high_words_ = true;  // the 64-bit-word segments (the tests turn them off to compare)
   Sum den_;
   Sum num_[kMaxVaryings];
+  // The span-start cursor of the current triangle (begin / run).
+  const TriangleEquations* tri_ = nullptr;
+  bool started_ = false, fits_ = false, z_cursor_ = false;
+  int32_t cx_ = 0, cy_ = 0;            // the last span start
+  u128 val_[1 + kMaxVaryings] = {};   // D, N_m at (cx_, cy_) (two's complement)
+  DepthCursor zcur_;
   Counts counts_;
   std::vector<uint8_t> scratch_;  // run(…, emit)'s records
 };

@@ -56,14 +56,20 @@ void traverse(const TriSetup& t, SpanFn&& span) {
   EdgeStepper row(t, t.x0, t.y0);  // at (x0, j)
   const int w = t.x1 - t.x0;       // last offset in a row
   if (w < kScanMaxWidth) {
+    // Every pixel of the row is tested into a bit mask (no branch per pixel: the loop runs the
+    // same w + 1 times on every row, where stopping at the interval's ends mispredicted twice
+    // per row — most of the bunny's traversal time, docs/speed.md "Session 9: the span start");
+    // the covered pixels are one interval, so its ends are the mask's lowest and highest bits.
+    static_assert(kScanMaxWidth <= 32, "the row mask is 32 bits");
     for (int j = t.y0; j <= t.y1; ++j, row.step_y()) {
-      EdgeStepper p = row;
-      int i = 0;
-      while (i <= w && !p.inside()) p.step_x(), ++i;
-      if (i > w) continue;
-      const int xb = i;
-      while (i <= w && p.inside()) p.step_x(), ++i;
-      span(j, t.x0 + xb, t.x0 + i - 1);
+      int64_t v0 = row.v[0], v1 = row.v[1], v2 = row.v[2];
+      uint32_t m = 0;
+      for (int i = 0; i <= w; ++i) {
+        m |= (uint32_t)((v0 | v1 | v2) >= 0) << i;
+        v0 += row.dx[0], v1 += row.dx[1], v2 += row.dx[2];
+      }
+      if (m == 0) continue;
+      span(j, t.x0 + __builtin_ctz(m), t.x0 + 31 - __builtin_clz(m));
     }
     return;
   }

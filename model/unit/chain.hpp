@@ -198,6 +198,7 @@ class FragmentChain {
     return setup_.step(tri, [&](const TriangleEquations& eq) {
       taps_.template out<SetupStage>(eq);
       taps_.template in<TraverseStage>(eq);
+      if (use_fused_) fused_.begin(eq);  // eq is setup's record, rewritten per triangle
       traverse_.step(eq, [&](const Span& sp) { span(eq, sp); });
     });
   }
@@ -211,6 +212,7 @@ class FragmentChain {
     t.y1 = std::min(t.y1, y1);
     Span sp;
     sp.prim = eq.prim;
+    if (use_fused_) fused_.begin(eq);
     traverse(t, [&](int j, int xb, int xe) {
       sp.y = j, sp.x0 = xb, sp.x1 = xe;
       span(eq, sp);
@@ -225,7 +227,7 @@ class FragmentChain {
       stats_.fragments_depth_pass += (uint64_t)(sp.x1 - sp.x0 + 1);
       return;
     }
-    if (use_fused_ && fused_.fits(eq)) {  // no tap: stages 7–9 in one loop (model/stages/interp_span.hpp)
+    if (use_fused_ && fused_.fits_begun(eq)) {  // no tap: stages 7–9 in one loop (model/stages/interp_span.hpp)
       const uint64_t n = (uint64_t)(sp.x1 - sp.x0 + 1);
       uint8_t* rec = nullptr;
       bool lent = false;

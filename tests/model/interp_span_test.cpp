@@ -8,6 +8,7 @@
 // (FusedSpan::Counts), and the whole chain (FragmentChain picks the fused path only without taps).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <type_traits>
 #include <string>
@@ -64,6 +65,25 @@ std::vector<ClipTriangle> random_tris(uint64_t seed, int n, int nv) {
   return v;
 }
 
+// Small triangles (1–8 pixels across, the bunny's size) at random places, overlapping in depth.
+std::vector<ClipTriangle> small_tris(uint64_t seed, int n, int nv) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> centre(-0.95f, 0.95f), size(0.01f, 0.1f), zf(0.0f, 1.0f), wf(0.2f, 4.0f),
+      var(-5.0f, 5.0f), unit(-1.0f, 1.0f);
+  std::vector<ClipTriangle> v;
+  for (int t = 0; t < n; ++t) {
+    ClipTriangle tri;
+    const float cx = centre(rng), cy = centre(rng), sz = size(rng);
+    for (auto& x : tri.v) {
+      const float w = wf(rng);
+      x.pos[0] = (cx + sz * unit(rng)) * w, x.pos[1] = (cy + sz * unit(rng)) * w, x.pos[2] = zf(rng) * w, x.pos[3] = w;
+      for (int k = 0; k < nv; ++k) x.var[k] = var(rng);
+    }
+    v.push_back(tri);
+  }
+  return v;
+}
+
 // A grazing plane as two triangles (w from near to far: the sums change binade along a row)
 // with varyings crossing zero in the middle of the screen.
 std::vector<ClipTriangle> grazing_plane(int nv, float w_far) {
@@ -84,8 +104,10 @@ std::vector<ClipTriangle> grazing_plane(int nv, float w_far) {
 // Stages 5–9 of every triangle, each span through the staged stages (interp → depth → divide,
 // as FragmentChain composes them) on one depth buffer and through FusedSpan on another; every
 // emitted fragment and both buffers compared. Returns the fused path's counts.
+// scramble: each triangle's spans in a shuffled order, some repeated, some cut to a part (the
+// span-start cursor then moves left, right, down and by several rows, and to the same start).
 FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
-                          const std::string& what) {
+                          const std::string& what, bool scramble = false) {
   const size_t words = (size_t)(st.viewport_w) * (size_t)st.viewport_h;
   std::vector<uint32_t> buf_staged(words, (1u << cfg.raster.depth_bits()) - 1), buf_fused = buf_staged,
                                                                                 buf_u128 = buf_staged;
@@ -126,12 +148,15 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
     buf_u128 = buf_staged;
   }
   uint64_t frags = 0, bad = 0, fails = 0;
+  std::mt19937_64 rng(tris.size());
   for (size_t p = 0; p < tris.size(); ++p) {
     pieces.clear();
     geometry(cfg, st, tris[p], (uint32_t)p, pieces, gs);
     for (const SetupTriangle& tri : pieces)
       setup.step(tri, [&](const TriangleEquations& eq) {
-        traverse.step(eq, [&](const Span& sp) {
+        fused.begin(eq);  // setup rewrites one record per triangle
+        fused_u128.begin(eq);
+        auto check = [&](const Span& sp) {
           std::vector<Fragment> want, got;
           uint64_t pass_staged = 0;
           interp.step(eq, sp, [&](const PlaneSample& ps) {
@@ -153,7 +178,24 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
                 ADD_FAILURE() << what << path << ": fragment (" << want[i].x << ", " << want[i].y << ") prim " << want[i].prim;
             }
           }
-        });
+        };
+        if (!scramble) {
+          traverse.step(eq, check);
+          return;
+        }
+        std::vector<Span> spans;
+        traverse.step(eq, [&](const Span& sp) { spans.push_back(sp); });
+        const size_t n = spans.size();
+        for (size_t k = 0; k < n; ++k) {
+          Span part = spans[k];
+          if (rng() % 3 == 0) spans.push_back(part);  // the same start again
+          if (part.x1 > part.x0 && rng() % 2 == 0) {  // a later part of the span
+            part.x0 += 1 + (int)(rng() % (uint64_t)(part.x1 - part.x0));
+            spans.push_back(part);
+          }
+        }
+        std::shuffle(spans.begin(), spans.end(), rng);
+        for (const Span& sp : spans) check(sp);
       });
   }
   EXPECT_EQ(bad, 0u) << what;
@@ -180,6 +222,9 @@ Config widths_config(int nb, int db, int qb) {
 void add(FusedSpan::Counts& a, const FusedSpan::Counts& b) {
   a.spans += b.spans, a.spans_z128 += b.spans_z128, a.spans_zconst += b.spans_zconst, a.segments += b.segments;
   a.exits_divided += b.exits_divided, a.sign_changes += b.sign_changes, a.segments_high += b.segments_high;
+  a.cursor_starts += b.cursor_starts, a.cursor_moves += b.cursor_moves, a.spans_z64 += b.spans_z64;
+  a.z_moves_divided += b.z_moves_divided, a.z_cursor_lost += b.z_cursor_lost, a.rearmed_moves += b.rearmed_moves;
+  a.sums_fixed += b.sums_fixed, a.rearmed_sign_moves += b.rearmed_sign_moves;
 }
 
 // A tap (any tap type but NoTaps makes FragmentChain take the staged stages).
@@ -574,4 +619,177 @@ TEST(FusedSpan, SignificandCarryOutsInTheWordSegmentsEqualTheStagedPath) {
   EXPECT_EQ(bad, 0u);
   EXPECT_EQ(frags, 4u * 2u * 16u);
   EXPECT_GE(counts.segments_high, 4u);  // the word segments ran these spans
+}
+
+TEST(FusedSpan, SpansInAnyOrderWithinATriangleEqualTheStagedPath) {
+  // The span-start cursor (FusedSpan::run after the first span of a triangle) moves every
+  // value from the last span start: here it moves by several rows, down, left and right, to the
+  // same start and to a later part of a span; the triangles have many rows (the big ones of
+  // random_tris, the grazing planes), sums leave their binade and sign between rows, tiny w
+  // gives depth planes the int64 cursor refuses. Every fragment and buffer word as the staged
+  // path in the same order, and every counter of the cursor reached.
+  FusedSpan::Counts total, small;
+  for (int nv : {0, 1, 2, 3}) {
+    DrawState st = viewport_state(nv);
+    for (bool scramble : {false, true}) {
+      const std::string what = "nv " + std::to_string(nv) + (scramble ? " scrambled" : "");
+      add(small, compare(Config{}, st, small_tris(290 + nv, 400, nv), what + " small", scramble));
+      add(total, compare(Config{}, st, random_tris(300 + nv, 60, nv), what, scramble));
+      add(total, compare(Config{}, st, grazing_plane(nv, 300.0f), what + " plane", scramble));
+      std::vector<ClipTriangle> tiny = random_tris(310 + nv, 30, nv);
+      for (ClipTriangle& t : tiny)
+        for (auto& v : t.v)
+          for (int c = 0; c < 4; ++c) v.pos[c] *= 1e-30f;
+      add(total, compare(Config{}, st, tiny, what + " tiny w", scramble));
+      add(total, compare(widths_config(28, 30, 20), st, random_tris(320 + nv, 30, nv), what + " widths", scramble));
+    }
+  }
+  std::printf("small triangles: %llu spans, %llu from the int64 cursor, %llu sums fixed per triangle of %llu starts\n",
+              (unsigned long long)small.spans, (unsigned long long)small.spans_z64, (unsigned long long)small.sums_fixed,
+              (unsigned long long)small.cursor_starts);
+  // The bunny's case: small triangles take the int64 cursor and keep their binades.
+  EXPECT_GT(small.spans_z64, small.spans / 2);
+  EXPECT_GT(small.sums_fixed, 200u);
+  EXPECT_GT(small.cursor_moves, small.cursor_starts);
+  add(total, small);
+  std::printf("cursor: %llu starts, %llu moves, %llu spans int64 from the cursor, %llu depth moves divided, %llu "
+              "cursors lost, %llu sums re-armed (%llu with the other sign), %llu sums fixed per triangle\n",
+              (unsigned long long)total.cursor_starts, (unsigned long long)total.cursor_moves,
+              (unsigned long long)total.spans_z64, (unsigned long long)total.z_moves_divided,
+              (unsigned long long)total.z_cursor_lost, (unsigned long long)total.rearmed_moves,
+              (unsigned long long)total.rearmed_sign_moves, (unsigned long long)total.sums_fixed);
+  EXPECT_GT(total.cursor_starts, 1000u);
+  EXPECT_GT(total.cursor_moves, 10 * total.cursor_starts);
+  EXPECT_GT(total.spans_z64, 1000u);
+  EXPECT_GT(total.spans_z128, 0u);
+  EXPECT_GT(total.spans_zconst, 0u);
+  EXPECT_GT(total.z_moves_divided, 100u);
+  EXPECT_GT(total.z_cursor_lost, 10u);
+  EXPECT_GT(total.rearmed_moves, 100u);
+  EXPECT_GT(total.rearmed_sign_moves, 10u);
+  EXPECT_GT(total.sums_fixed, 100u);
+  EXPECT_GT(total.segments, total.spans);
+  EXPECT_GT(total.sign_changes, 0u);
+}
+
+namespace {
+
+// The state arm(v) gives, field by field (norm only where the sum is not zero).
+bool same_sum(const FusedSpan::Sum& a, const FusedSpan::Sum& b) {
+  bool same = a.mag == b.mag && a.neg == b.neg && a.step == b.step && a.lo == b.lo && a.width == b.width;
+  if (a.mag != 0)
+    same = same && a.norm.bits == b.norm.bits && a.norm.m == b.norm.m && a.norm.shift == b.norm.shift &&
+           a.norm.bias == b.norm.bias;
+  return same;
+}
+int msb_or_minus(i128 v) { return v == 0 ? -1 : msb_index(v < 0 ? (u128)0 - (u128)v : (u128)v); }
+
+}  // namespace
+
+TEST(SpanSum, SetGivesArmsStateAndKeepsTheNormaliserExactlyWithinTheBinade) {
+  // Exhaustive on small values (every pair in [−600, 600], 4-bit significands), then values of
+  // every binade up to 2^126 at its edges: set(v) after arm(u) leaves the state arm(v) gives,
+  // and answers "kept" exactly when u and v share sign and msb (or are both 0).
+  auto check = [](i128 u, i128 v, int bits, i128 dx) {
+    FusedSpan::Sum a, b;
+    a.bits = b.bits = bits;
+    a.dx = b.dx = dx;
+    a.arm(u);
+    const bool kept = a.set(v);
+    b.arm(v);
+    const bool want_kept = (u < 0) == (v < 0) && msb_or_minus(u) == msb_or_minus(v);
+    return same_sum(a, b) && kept == want_kept;
+  };
+  uint64_t bad = 0, n = 0;
+  for (int u = -600; u <= 600; ++u)
+    for (int v = -600; v <= 600; ++v, ++n) bad += check(u, v, 4, (u + v) % 7 - 3) ? 0 : 1;
+  std::mt19937_64 g(5);
+  for (int k = 0; k < 1000000; ++k, ++n) {
+    const int e = (int)(g() % 126);
+    auto edge = [&](int ee) {
+      const i128 p = (i128)1 << ee;
+      const i128 off = (i128)(g() % 5) - 2;  // 2^e − 2 … 2^e + 2
+      i128 x = p + off;
+      if (x < 0) x = 0;
+      return g() % 2 ? -x : x;
+    };
+    const i128 u = edge(e), v = g() % 3 == 0 ? edge(e) : edge((int)(g() % 126));
+    bad += check(u, v, 1 + (int)(g() % 40), (i128)(g() >> 1)) ? 0 : 1;
+  }
+  EXPECT_EQ(bad, 0u) << "of " << n;
+}
+
+TEST(SpanSum, TheRectangleTestHoldsExactlyWhenEveryPixelIsInTheBinade) {
+  // start()'s `fixed`: true exactly when every pixel of the candidate rectangle has the start
+  // value's sign and binade (brute force over the rectangle). Exhaustive on small planes (value
+  // at the start −40 … 40, steps −6 … 6, every start pixel of a 4 × 3 rectangle), then random
+  // planes of 2^40–2^110 near binade edges; where fixed, move() to any pixel leaves the state
+  // arm(the plane's value there) gives.
+  uint64_t bad = 0, fixed = 0, not_fixed = 0;
+  std::mt19937_64 g(9);
+  auto check = [&](const Plane& p, const TriSetup& e, int a, int b, int bits) {
+    FusedSpan::Sum s;
+    FusedSpan::Counts k;
+    Span sp;
+    sp.y = b, sp.x0 = a, sp.x1 = a;
+    u128 v;
+    s.start(p, sp, bits, v, e, true);
+    const i128 v0 = p.at(a, b);
+    bool all = true;
+    for (int i = e.x0; i <= e.x1; ++i)
+      for (int j = e.y0; j <= e.y1; ++j) {
+        const i128 w = p.at(i, j);
+        all = all && (w < 0) == (v0 < 0) && msb_or_minus(w) == msb_or_minus(v0);
+      }
+    if (s.fixed != all) ++bad;
+    (s.fixed ? fixed : not_fixed) += 1;
+    // Moves from the start through every pixel, in an order with steps of every kind (the
+    // common ones: next row and x by −1, 0, +1; others) (fixed: no test; else set()).
+    std::vector<std::pair<int, int>> order;
+    for (int j = e.y0; j <= e.y1; ++j)
+      for (int i = e.x0; i <= e.x1; ++i) order.emplace_back((j - e.y0) % 2 ? e.x1 - (i - e.x0) : i, j);
+    for (int j = e.y0; j <= e.y1; ++j)
+      for (int i = e.x0; i <= e.x1; ++i) order.emplace_back(i, j);
+    std::shuffle(order.begin() + order.size() / 2, order.end(), g);
+    int ci = a, cj = b;
+    for (const auto& [i, j] : order) {
+        const int64_t ddx = i - ci, ddy = j - cj;
+        const int sel = ddy == 1 && ddx >= -1 && ddx <= 1 ? (int)ddx + 1 : -1;
+        s.move(p, sel, ddx, ddy, v, k);
+        ci = i, cj = j;
+        FusedSpan::Sum want;
+        want.bits = bits;
+        want.dx = p.dx;
+        want.arm(p.at(i, j));
+        if (!same_sum(s, want) || (i128)v != p.at(i, j)) ++bad;
+      }
+  };
+  TriSetup e;
+  e.x0 = 0, e.x1 = 3, e.y0 = 0, e.y1 = 2;
+  for (int c = -40; c <= 40; ++c)
+    for (int dx = -6; dx <= 6; ++dx)
+      for (int dy = -6; dy <= 6; ++dy)
+        for (int a = e.x0; a <= e.x1; ++a)
+          for (int b = e.y0; b <= e.y1; ++b) {
+            Plane p;
+            p.dx = dx, p.dy = dy, p.i0 = a, p.j0 = b, p.c = c;
+            check(p, e, a, b, 4);
+          }
+  for (int k = 0; k < 200000; ++k) {
+    TriSetup r;
+    r.x0 = (int)(g() % 2000) - 1000, r.y0 = (int)(g() % 2000) - 1000;
+    r.x1 = r.x0 + (int)(g() % 6), r.y1 = r.y0 + (int)(g() % 6);
+    const int a = r.x0 + (int)(g() % (uint64_t)(r.x1 - r.x0 + 1)), b = r.y0 + (int)(g() % (uint64_t)(r.y1 - r.y0 + 1));
+    const int eb = 40 + (int)(g() % 70), sb = eb - 1 - (int)(g() % 20);
+    Plane p;
+    p.i0 = a, p.j0 = b;
+    p.c = ((i128)1 << eb) + (i128)(g() % 7) - 3 - (i128)(g() % 4) * ((i128)1 << sb);  // near a binade edge
+    if (g() % 2) p.c = -p.c;
+    p.dx = ((i128)(g() >> 1) << (sb - 62 > 0 ? sb - 62 : 0)) * (g() % 2 ? 1 : -1);
+    p.dy = ((i128)(g() >> 1) << (sb - 62 > 0 ? sb - 62 : 0)) * (g() % 2 ? 1 : -1);
+    check(p, r, a, b, 32);
+  }
+  EXPECT_EQ(bad, 0u);
+  EXPECT_GT(fixed, 10000u);
+  EXPECT_GT(not_fixed, 10000u);
 }
