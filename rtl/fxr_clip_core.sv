@@ -181,7 +181,8 @@ module fxr_clip_core (
   // overlap within CM + SB bits of the common leading one, so aligning the one with the larger
   // exponent onto the other and adding in CM + SB + 2 bits is exact. No rounding anywhere.
   // Returns {d < 0, d = 0}. A function called 21 times for the outcodes of an input triangle
-  // (combinational, below) and once for the iterative clipper's vertex (in the clocked process).
+  // (on its transfer, in the control process) and once for the iterative clipper's vertex (in the
+  // data process).
   // Selections are ?: expressions rather than if statements: Yosys's proc_mux walks a process's
   // whole decision tree once per signal assigned in it, and 22 inlined copies of if-based code
   // made that pass take most of a synthesis's time.
@@ -238,8 +239,6 @@ module fxr_clip_core (
       for (int tp = 0; tp < NumPlanes; tp++)
         outcodes[tv*NumPlanes + tp] = |(side_of(t[(2-tv)*XB +: XB], tp) & 2'b10);
   endfunction
-  logic [3*NumPlanes-1:0] oc_in;  // the input triangle's, read by the fast path on its transfer
-  assign oc_in = outcodes(vin);
 
   // ---- the iterative clipper's state -----------------------------------------------------------
   typedef enum logic [3:0] {
@@ -450,7 +449,11 @@ module fxr_clip_core (
       case (state)
         SIdle: begin
           if (take) begin
-            // the fast path: the 21 exact plane sides of the input triangle (oc_in)
+            // the fast path: the 21 exact plane sides of the input triangle (oc_in), computed here
+            // on its transfer only, not as a continuous assignment every clock (docs/rtl.md,
+            // "Co-simulation speed", session 9: a gated always_comb does not settle in Icarus 11)
+            logic [3*NumPlanes-1:0] oc_in;
+            oc_in = outcodes(vin);
             done_created_o <= '0;
             if (!gb_valid) begin
               done_o <= 1'b1;

@@ -32,8 +32,8 @@ module fxr_div_radix2 #(
   localparam int Stages    = (Steps + BitsPerStage - 1) / BitsPerStage;
 
   // Stage contents (one operand in flight): partial remainder r (signed), digit bits p,
-  // aligned divisor b, k (exp_adj -1), dbz / nz flags. Plain packed vectors (Yosys 0.23 does
-  // not handle arrays of structs).
+  // aligned divisor b, k (exp_adj -1), dbz / nz flags. Plain packed vectors or arrays of them
+  // (Yosys 0.23 does not handle arrays of structs).
   logic [RemBits-1:0]         pre_r;  // two's complement partial remainders throughout
   logic [QuotBits-1:0]        pre_p;
   logic [AlignBits-1:0]       pre_b;
@@ -105,100 +105,88 @@ module fxr_div_radix2 #(
     end
   end
 
+  // One recurrence step, the loop body of fxr::div_sig_radix2_steps: r >= 0: r' = 2r - b, digit
+  // +1 (p' = {p, 1}); r < 0: r' = 2r + b, digit -1 (p' = {p, 0}). Invariant a'*2^i = Q_i*b + r_i
+  // with r_i in [-b, b): r' stays in RemBits signed bits (|r| < b < 2^AlignBits). Exact, no
+  // rounding. Returns {r', p'}.
+  function automatic logic [RemBits+QuotBits-1:0] nr_step(input logic [RemBits-1:0] r,
+                                                          input logic [QuotBits-1:0] p,
+                                                          input logic [AlignBits-1:0] b);
+    logic signed [RemBits-1:0] b_ext, r2;
+    logic                      pos;
+    b_ext = $signed({{(RemBits - AlignBits){1'b0}}, b});
+    r2 = $signed({r[RemBits-2:0], 1'b0});
+    pos = ~r[RemBits-1];
+    nr_step = {pos ? r2 - b_ext : r2 + b_ext, p[QuotBits-2:0], pos};
+  endfunction
+
   if (Schedule == fxr_config_pkg::DivSchedulePipelined) begin : gen_pipelined
     // Register stage s holds an operand after s * BitsPerStage recurrence steps (s = 0: pre).
     // Global stall: every register advances when the output register can take a result.
-    // Flattened per-stage vectors (Yosys 0.23 reads neither arrays of structs nor
-    // multi-dimensional packed arrays): field of stage s at [s*Width +: Width].
-    logic [(Stages+1)*RemBits-1:0]   r_q;
-    logic [(Stages+1)*QuotBits-1:0]  p_q;
-    logic [(Stages+1)*AlignBits-1:0] b_q;
-    logic [Stages:0]                 k_q, dbz_q, nz_q, v_q;
+    // Stages 0 … Stages − 1 as unpacked arrays, one per field, written by one clocked process: a
+    // loop over the stages in descending order with blocking assignments (each element is read,
+    // the register's value, before the stage below overwrites it: the shift register of
+    // nonblocking assignments, without a simulator's delayed-assignment copy of every element;
+    // the arrays are read nowhere else). The last stage, read by the post logic, is nonblocking.
+    // The form of fxr_viewport_lane (docs/rtl.md, "Co-simulation speed", sessions 8 and 9): flat
+    // per-stage vectors made Verilator copy and re-insert each stage's unaligned slice every
+    // clock. Yosys makes each element a register (mem2reg).
+    (* mem2reg *) logic [RemBits-1:0]   r_a [Stages];
+    (* mem2reg *) logic [QuotBits-1:0]  p_a [Stages];
+    (* mem2reg *) logic [AlignBits-1:0] b_a [Stages];
+    (* mem2reg *) logic [2:0]           f_a [Stages];  // {k, dbz, nz}
+    logic [RemBits-1:0]   r_l;  // stage Stages
+    logic [QuotBits-1:0]  p_l;
+    logic [AlignBits-1:0] b_l;
+    logic [2:0]           f_l;
+    logic [Stages:0]      v_q;
 
     assign in_ready_o = out_free;
     assign out_load   = v_q[Stages];
-    assign last_r     = r_q[Stages*RemBits +: RemBits];
-    assign last_p     = p_q[Stages*QuotBits +: QuotBits];
-    assign last_b     = b_q[Stages*AlignBits +: AlignBits];
-    assign last_k     = k_q[Stages];
-    assign last_dbz   = dbz_q[Stages];
-    assign last_nz    = nz_q[Stages];
+    assign last_r     = r_l;
+    assign last_p     = p_l;
+    assign last_b     = b_l;
+    assign {last_k, last_dbz, last_nz} = f_l;
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
-        v_q[0] <= 1'b0;
+        v_q <= '0;
       end else if (out_free) begin
-        v_q[0] <= in_valid_i;
+        v_q <= {v_q[Stages-1:0], in_valid_i};
       end
     end
+    /* verilator lint_off BLKSEQ */
     always_ff @(posedge clk_i) begin
-      if (out_free && in_valid_i) begin
-        r_q[0 +: RemBits]   <= pre_r;
-        p_q[0 +: QuotBits]  <= pre_p;
-        b_q[0 +: AlignBits] <= pre_b;
-        k_q[0]   <= pre_k;
-        dbz_q[0] <= pre_dbz;
-        nz_q[0]  <= pre_nz;
-      end
-    end
-
-    for (genvar s = 0; s < Stages; s++) begin : gen_stage
-      // Slice offsets of stage s (in) and s + 1 (out). Icarus 11 evaluates genvar expressions
-      // in port connections and part selects of nested generate loops as X: use localparams.
-      localparam int RIn  = s * RemBits;
-      localparam int ROut = (s + 1) * RemBits;
-      localparam int PIn  = s * QuotBits;
-      localparam int POut = (s + 1) * QuotBits;
-      localparam int BIn  = s * AlignBits;
-      localparam int BOut = (s + 1) * AlignBits;
-      localparam int SIn  = s;
-      localparam int SOut = s + 1;
-      // Step j's input at [j*Width +: Width], its output at [(j+1)*Width +: Width]. Nets, not
-      // variables: slices have different drivers.
-      wire [(BitsPerStage+1)*RemBits-1:0]  r_c;
-      wire [(BitsPerStage+1)*QuotBits-1:0] p_c;
-      assign r_c[0 +: RemBits]  = r_q[RIn +: RemBits];
-      assign p_c[0 +: QuotBits] = p_q[PIn +: QuotBits];
-      for (genvar j = 0; j < BitsPerStage; j++) begin : gen_step
-        localparam int  JrIn   = j * RemBits;
-        localparam int  JrOut  = (j + 1) * RemBits;
-        localparam int  JpIn   = j * QuotBits;
-        localparam int  JpOut  = (j + 1) * QuotBits;
-        localparam bit  StepEn = (s * BitsPerStage + j) < Steps;  // last stage may be partial
-        logic [RemBits-1:0]  r_out;
-        logic [QuotBits-1:0] p_out;
-        assign r_c[JrOut +: RemBits]  = r_out;
-        assign p_c[JpOut +: QuotBits] = p_out;
-        fxr_div_radix2_step #(
-          .AlignBits(AlignBits),
-          .QuotBits (QuotBits)
-        ) u_step (
-          .en_i(StepEn && v_q[SIn]),  // an empty stage's step is skipped (its result is not read)
-          .r_i (r_c[JrIn +: RemBits]),
-          .p_i (p_c[JpIn +: QuotBits]),
-          .b_i (b_q[BIn +: AlignBits]),
-          .r_o (r_out),
-          .p_o (p_out)
-        );
-      end
-      always_ff @(posedge clk_i or negedge rst_ni) begin
-        if (!rst_ni) begin
-          v_q[SOut] <= 1'b0;
-        end else if (out_free) begin
-          v_q[SOut] <= v_q[SIn];
+      if (out_free) begin
+        for (int s = Stages - 1; s >= 0; s--) begin
+          if (v_q[s]) begin
+            logic [RemBits+QuotBits-1:0] rp;
+            rp = {r_a[s], p_a[s]};
+            // steps s * BitsPerStage + j; the last stage may be partial
+            for (int j = 0; j < BitsPerStage; j++)
+              if (s * BitsPerStage + j < Steps) rp = nr_step(rp[QuotBits +: RemBits], rp[0 +: QuotBits], b_a[s]);
+            if (s + 1 < Stages) begin
+              r_a[s+1] = rp[QuotBits +: RemBits];
+              p_a[s+1] = rp[0 +: QuotBits];
+              b_a[s+1] = b_a[s];
+              f_a[s+1] = f_a[s];
+            end else begin
+              r_l <= rp[QuotBits +: RemBits];
+              p_l <= rp[0 +: QuotBits];
+              b_l <= b_a[s];
+              f_l <= f_a[s];
+            end
+          end
         end
-      end
-      always_ff @(posedge clk_i) begin
-        if (out_free && v_q[SIn]) begin
-          r_q[ROut +: RemBits]   <= r_c[BitsPerStage*RemBits +: RemBits];
-          p_q[POut +: QuotBits]  <= p_c[BitsPerStage*QuotBits +: QuotBits];
-          b_q[BOut +: AlignBits] <= b_q[BIn +: AlignBits];
-          k_q[SOut]              <= k_q[SIn];
-          dbz_q[SOut]            <= dbz_q[SIn];
-          nz_q[SOut]             <= nz_q[SIn];
+        if (in_valid_i) begin
+          r_a[0] = pre_r;
+          p_a[0] = pre_p;
+          b_a[0] = pre_b;
+          f_a[0] = {pre_k, pre_dbz, pre_nz};
         end
       end
     end
+    /* verilator lint_on BLKSEQ */
   end else begin : gen_iterative
     localparam int CntBits = $clog2(Stages + 1);
     localparam int IdxBits = CntBits + 8;  // cnt * BitsPerStage + j, BitsPerStage <= 8 < 2^8
@@ -212,8 +200,6 @@ module fxr_div_radix2 #(
     logic [CntBits-1:0]   cnt_q;
     logic                 done;
     logic                 accept;
-    wire [(BitsPerStage+1)*RemBits-1:0]  r_c;  // step j: in [j*W +: W], out [(j+1)*W +: W]
-    wire [(BitsPerStage+1)*QuotBits-1:0] p_c;
 
     assign done       = busy_q && (cnt_q == LastCnt);
     assign out_load   = done;
@@ -225,33 +211,6 @@ module fxr_div_radix2 #(
     assign last_k     = k_q;
     assign last_dbz   = dbz_q;
     assign last_nz    = nz_q;
-
-    assign r_c[0 +: RemBits]  = r_q;
-    assign p_c[0 +: QuotBits] = p_q;
-    for (genvar j = 0; j < BitsPerStage; j++) begin : gen_step
-      localparam int JrIn  = j * RemBits;  // localparams, not genvar expressions (Icarus 11)
-      localparam int JrOut = (j + 1) * RemBits;
-      localparam int JpIn  = j * QuotBits;
-      localparam int JpOut = (j + 1) * QuotBits;
-      localparam logic [IdxBits-1:0] JIdx = IdxBits'(j);
-      logic [IdxBits-1:0]  step_idx;
-      logic [RemBits-1:0]  r_out;
-      logic [QuotBits-1:0] p_out;
-      assign r_c[JrOut +: RemBits]  = r_out;
-      assign p_c[JpOut +: QuotBits] = p_out;
-      assign step_idx = IdxBits'(cnt_q) * IdxBits'(BitsPerStage) + JIdx;
-      fxr_div_radix2_step #(
-        .AlignBits(AlignBits),
-        .QuotBits (QuotBits)
-      ) u_step (
-        .en_i(step_idx < IdxBits'(Steps)),
-        .r_i (r_c[JrIn +: RemBits]),
-        .p_i (p_c[JpIn +: QuotBits]),
-        .b_i (b_q),
-        .r_o (r_out),
-        .p_o (p_out)
-      );
-    end
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
@@ -266,6 +225,7 @@ module fxr_div_radix2 #(
         cnt_q <= cnt_q + 1'b1;
       end
     end
+    /* verilator lint_off BLKSEQ */
     always_ff @(posedge clk_i) begin
       if (accept) begin
         r_q   <= pre_r;
@@ -275,9 +235,16 @@ module fxr_div_radix2 #(
         dbz_q <= pre_dbz;
         nz_q  <= pre_nz;
       end else if (busy_q && !done) begin
-        r_q <= r_c[BitsPerStage*RemBits +: RemBits];
-        p_q <= p_c[BitsPerStage*QuotBits +: QuotBits];
+        logic [RemBits+QuotBits-1:0] rp;
+        rp = {r_q, p_q};
+        // steps cnt * BitsPerStage + j; the last round may be partial
+        for (int j = 0; j < BitsPerStage; j++)
+          if (IdxBits'(cnt_q) * IdxBits'(BitsPerStage) + IdxBits'(j) < IdxBits'(Steps))
+            rp = nr_step(rp[QuotBits +: RemBits], rp[0 +: QuotBits], b_q);
+        r_q <= rp[QuotBits +: RemBits];
+        p_q <= rp[0 +: QuotBits];
       end
     end
+    /* verilator lint_on BLKSEQ */
   end
 endmodule

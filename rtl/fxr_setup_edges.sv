@@ -83,31 +83,20 @@ module fxr_setup_edges #(
   logic signed [RB-1:0]  rx0_d, rx1_d, ry0_d, ry1_d;
   logic signed [RB-1:0]  vx, vy, sx, sy, t;
   logic                  scissor;
-  always_comb begin
-    for (int k = 0; k < 3; k++) begin
-      gx[k] = '0;
-      gy[k] = '0;
-    end
-    range_d = 1'b0;
-    a_d = '0;
-    b_d = '0;
-    p_d = '0;
-    q_d = '0;
-    xmin = '0;
-    xmax = '0;
-    ymin = '0;
-    ymax = '0;
-    vx = '0;
-    vy = '0;
-    sx = '0;
-    sy = '0;
-    t = '0;
-    scissor = 1'b0;
-    rx0_d = '0;
-    ry0_d = '0;
-    rx1_d = '0;
-    ry1_d = '0;
-    if (v_i[0]) begin
+  logic [3*ECB-1:0]  s1_a_q, s1_b_q;
+  logic [6*CB-1:0] s1_p_q, s1_q_q;
+  logic [CB-1:0]        s1_xmin_q, s1_xmax_q, s1_ymin_q, s1_ymax_q;
+  logic [RB-1:0]        s1_rx0_q, s1_rx1_q, s1_ry0_q, s1_ry1_q;
+  logic                 s1_range_q, s1_front_ccw_q;
+  logic [1:0]           s1_cull_q;
+  // Stage 1's logic is computed in the clocked process that loads its registers: it reads the
+  // module's inputs, which in fxr_raster_backend are top-level ports, and Verilator evaluates
+  // combinational logic on top-level inputs in both eval()s of a clock (the input region); here
+  // it runs once, at the edge that loads it (docs/rtl.md, "Co-simulation speed", session 9).
+  // The variables above are read nowhere else (blocking: combinational in synthesis).
+  /* verilator lint_off BLKSEQ */
+  always_ff @(posedge clk_i) begin
+    if (en_i && v_i[0]) begin
       for (int k = 0; k < 3; k++) begin
         gx[k] = CB'($signed(x_i[k*XB +: XB])) <<< Up;
         gy[k] = CB'($signed(y_i[k*XB +: XB])) <<< Up;
@@ -153,17 +142,6 @@ module fxr_setup_edges #(
       if (ry0_d < -(RB'(1) <<< (WindowIntBits - 1))) ry0_d = -(RB'(1) <<< (WindowIntBits - 1));
       if (rx1_d > (RB'(1) <<< (WindowIntBits - 1)) - RB'(1)) rx1_d = (RB'(1) <<< (WindowIntBits - 1)) - RB'(1);
       if (ry1_d > (RB'(1) <<< (WindowIntBits - 1)) - RB'(1)) ry1_d = (RB'(1) <<< (WindowIntBits - 1)) - RB'(1);
-    end
-  end
-
-  logic [3*ECB-1:0]  s1_a_q, s1_b_q;
-  logic [6*CB-1:0] s1_p_q, s1_q_q;
-  logic [CB-1:0]        s1_xmin_q, s1_xmax_q, s1_ymin_q, s1_ymax_q;
-  logic [RB-1:0]        s1_rx0_q, s1_rx1_q, s1_ry0_q, s1_ry1_q;
-  logic                 s1_range_q, s1_front_ccw_q;
-  logic [1:0]           s1_cull_q;
-  always_ff @(posedge clk_i) begin
-    if (en_i && v_i[0]) begin
       s1_a_q         <= a_d;
       s1_b_q         <= b_d;
       s1_p_q         <= p_d;
@@ -181,24 +159,25 @@ module fxr_setup_edges #(
       s1_cull_q      <= cull_i;
     end
   end
+  /* verilator lint_on BLKSEQ */
 
   // ---- stage 2 ------------------------------------------------------------------------------
+  // (computed in the process that loads it, as stage 1: no combinational logic in this module
+  // reads v_i, whose bit 0 is fxr_raster_backend's top-level input valid)
   logic [3*EVB-1:0]   c_d;
   logic signed [EVB-1:0] area2_d;
   logic signed [RB-1:0]  bx0_d, bx1_d, by0_d, by1_d;
   logic signed [CB+1:0]  lo_x, lo_y, hi_x, hi_y;
-  always_comb begin
-    c_d = '0;
-    area2_d = '0;
-    lo_x = '0;
-    lo_y = '0;
-    hi_x = '0;
-    hi_y = '0;
-    bx0_d = '0;
-    bx1_d = '0;
-    by0_d = '0;
-    by1_d = '0;
-    if (v_i[1]) begin
+  logic [3*ECB-1:0] s2_a_q, s2_b_q;
+  logic [3*EVB-1:0] s2_c_q;
+  logic [EVB-1:0]      s2_area2_q;
+  logic [RB-1:0]       s2_bx0_q, s2_bx1_q, s2_by0_q, s2_by1_q;
+  logic                s2_range_q, s2_front_ccw_q;
+  logic [1:0]          s2_cull_q;
+  /* verilator lint_off BLKSEQ */
+  always_ff @(posedge clk_i) begin
+    if (en_i && v_i[1]) begin
+      area2_d = '0;
       for (int k = 0; k < 3; k++) begin
         c_d[k*EVB +: EVB]  = EVB'($signed(s1_p_q[k*(2*CB) +: 2*CB])) - EVB'($signed(s1_q_q[k*(2*CB) +: 2*CB]));
         area2_d = area2_d + $signed(c_d[k*EVB +: EVB]);
@@ -216,17 +195,6 @@ module fxr_setup_edges #(
       if ($signed(s1_ry0_q) > by0_d) by0_d = $signed(s1_ry0_q);
       if ($signed(s1_rx1_q) < bx1_d) bx1_d = $signed(s1_rx1_q);
       if ($signed(s1_ry1_q) < by1_d) by1_d = $signed(s1_ry1_q);
-    end
-  end
-
-  logic [3*ECB-1:0] s2_a_q, s2_b_q;
-  logic [3*EVB-1:0] s2_c_q;
-  logic [EVB-1:0]      s2_area2_q;
-  logic [RB-1:0]       s2_bx0_q, s2_bx1_q, s2_by0_q, s2_by1_q;
-  logic                s2_range_q, s2_front_ccw_q;
-  logic [1:0]          s2_cull_q;
-  always_ff @(posedge clk_i) begin
-    if (en_i && v_i[1]) begin
       s2_a_q         <= s1_a_q;
       s2_b_q         <= s1_b_q;
       s2_c_q         <= c_d;
@@ -240,6 +208,7 @@ module fxr_setup_edges #(
       s2_cull_q      <= s1_cull_q;
     end
   end
+  /* verilator lint_on BLKSEQ */
 
   // ---- stage 3 ------------------------------------------------------------------------------
   logic                  ccw, front, back, empty;
@@ -248,18 +217,9 @@ module fxr_setup_edges #(
   logic [3*EVB-1:0]   c_n;
   logic [2:0]            bias_d;
   logic [EVB-1:0]        area2_n;
-  always_comb begin
-    ccw = 1'b0;
-    front = 1'b0;
-    back = 1'b0;
-    empty = 1'b0;
-    outcome_d = OutcomeOk;
-    a_n = '0;
-    b_n = '0;
-    c_n = '0;
-    bias_d = '0;
-    area2_n = '0;
-    if (v_i[2]) begin
+  /* verilator lint_off BLKSEQ */
+  always_ff @(posedge clk_i) begin
+    if (en_i && v_i[2]) begin
       ccw   = $signed(s2_area2_q) > 0;
       front = ccw == s2_front_ccw_q;
       back  = (s2_cull_q == CullBack && !front) || (s2_cull_q == CullFront && front);
@@ -277,11 +237,6 @@ module fxr_setup_edges #(
         bias_d[k] = !(($signed(a_n[k*ECB +: ECB]) > 0) || (a_n[k*ECB +: ECB] == '0 && $signed(b_n[k*ECB +: ECB]) < 0));
       end
       area2_n = ccw ? s2_area2_q : -s2_area2_q;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (en_i && v_i[2]) begin
       outcome_o <= outcome_d;
       a_o       <= a_n;
       b_o       <= b_n;
@@ -295,4 +250,5 @@ module fxr_setup_edges #(
       y1_o      <= PB'(s2_by1_q);
     end
   end
+  /* verilator lint_on BLKSEQ */
 endmodule

@@ -207,6 +207,10 @@ module fxr_setup_fields #(
   // vs[c]: the data c registers after the input is valid. Each register stage loads, and each
   // combinational stage computes, only for valid data (held / 0 otherwise: nothing reads it), so
   // that the simulator skips an idle setup's wide products (docs/rtl.md, "Co-simulation speed").
+  // Combinational logic reads valid_q only (vs[c] = valid_q[c-1] for c >= 1): in
+  // fxr_raster_backend in_valid_i is a top-level input, and Verilator evaluates combinational
+  // logic on one in both eval()s of a clock (docs/rtl.md, "Co-simulation speed", session 9); vs
+  // (with in_valid_i) goes only to clocked processes (fxr_setup_edges, fxr_pipe).
   logic [Latency:0] vs;
   assign vs = {valid_q, in_valid_i};
 
@@ -276,7 +280,7 @@ module fxr_setup_fields #(
   ) u_attr (
     .clk_i  (clk_i),
     .en_i   (advance),
-    .v_i    (vs[EdgeStages +: AttrStages]),
+    .v_i    (valid_q[EdgeStages-1 +: AttrStages]),
     .ax_i   (ax_e),
     .ay_i   (ay_e),
     .x0_i   (bx0),
@@ -296,37 +300,57 @@ module fxr_setup_fields #(
     .area2_o(area2_attr)
   );
 
-  // ---- vertex values: block alignment at cycle 0, delayed to the planes (cycle 7) -----------
+  // ---- vertex values: registered as they come (cycle 1), block-aligned there, delayed to the
+  // planes (cycle 7). The alignment reads the register, not the input ports: in
+  // fxr_raster_backend these are top-level ports, and Verilator evaluates combinational logic on
+  // top-level inputs in both eval()s of a clock (docs/rtl.md, "Co-simulation speed", session 9).
+  localparam int RwRaw = 3 * (1 + RwSigBits + EB);  // {neg, sig, exp} of the three vertices
+  localparam int VwRaw = 3 * (1 + VwSigBits + EB);
+  logic [RwRaw-1:0] raw_rw;
+  logic [VwRaw-1:0] raw_vw0, raw_vw1;
+  logic             interp_q;  // interp_i of the triangle (the vector unit changes it per triangle)
+  always_ff @(posedge clk_i) begin
+    if (advance && in_valid_i) begin
+      interp_q  <= interp_i;
+      raw_rw    <= {v2_rw_neg_i, v1_rw_neg_i, v0_rw_neg_i, v2_rw_sig_i, v1_rw_sig_i, v0_rw_sig_i,
+                    v2_rw_exp_i, v1_rw_exp_i, v0_rw_exp_i};
+      raw_vw0   <= {v2_vw0_neg_i, v1_vw0_neg_i, v0_vw0_neg_i, v2_vw0_sig_i, v1_vw0_sig_i, v0_vw0_sig_i,
+                    v2_vw0_exp_i, v1_vw0_exp_i, v0_vw0_exp_i};
+      raw_vw1   <= {v2_vw1_neg_i, v1_vw1_neg_i, v0_vw1_neg_i, v2_vw1_sig_i, v1_vw1_sig_i, v0_vw1_sig_i,
+                    v2_vw1_exp_i, v1_vw1_exp_i, v0_vw1_exp_i};
+    end
+  end
+
   logic [3*QB-1:0] q_den, q_num [NV];
   logic [EB-1:0]   exp_den, exp_num [NV];
   logic [3*QB-1:0] q_rw;
   logic [EB-1:0]   exp_rw;
 
   fxr_setup_align #(.SigBits(RwSigBits), .ExpBits(EB), .Bits(InterpBlockBits)) u_align_rw (
-    .en_i (in_valid_i),
-    .neg_i({v2_rw_neg_i, v1_rw_neg_i, v0_rw_neg_i}),
-    .sig_i({v2_rw_sig_i, v1_rw_sig_i, v0_rw_sig_i}),
-    .exp_i({v2_rw_exp_i, v1_rw_exp_i, v0_rw_exp_i}),
+    .en_i (valid_q[0]),
+    .neg_i(raw_rw[RwRaw-1 -: 3]),
+    .sig_i(raw_rw[3*EB +: 3*RwSigBits]),
+    .exp_i(raw_rw[0 +: 3*EB]),
     .q_o  (q_rw),
     .exp_o(exp_rw)
   );
   // Affine: the denominator's vertex values are 1 (D = 2A), its exponent 0.
-  assign q_den   = interp_i ? {QB'(1), QB'(1), QB'(1)} : q_rw;
-  assign exp_den = interp_i ? '0 : exp_rw;
+  assign q_den   = interp_q ? {QB'(1), QB'(1), QB'(1)} : q_rw;
+  assign exp_den = interp_q ? '0 : exp_rw;
 
   fxr_setup_align #(.SigBits(VwSigBits), .ExpBits(EB), .Bits(InterpBlockBits)) u_align_vw0 (
-    .en_i (in_valid_i),
-    .neg_i({v2_vw0_neg_i, v1_vw0_neg_i, v0_vw0_neg_i}),
-    .sig_i({v2_vw0_sig_i, v1_vw0_sig_i, v0_vw0_sig_i}),
-    .exp_i({v2_vw0_exp_i, v1_vw0_exp_i, v0_vw0_exp_i}),
+    .en_i (valid_q[0]),
+    .neg_i(raw_vw0[VwRaw-1 -: 3]),
+    .sig_i(raw_vw0[3*EB +: 3*VwSigBits]),
+    .exp_i(raw_vw0[0 +: 3*EB]),
     .q_o  (q_num[0]),
     .exp_o(exp_num[0])
   );
   fxr_setup_align #(.SigBits(VwSigBits), .ExpBits(EB), .Bits(InterpBlockBits)) u_align_vw1 (
-    .en_i (in_valid_i),
-    .neg_i({v2_vw1_neg_i, v1_vw1_neg_i, v0_vw1_neg_i}),
-    .sig_i({v2_vw1_sig_i, v1_vw1_sig_i, v0_vw1_sig_i}),
-    .exp_i({v2_vw1_exp_i, v1_vw1_exp_i, v0_vw1_exp_i}),
+    .en_i (valid_q[0]),
+    .neg_i(raw_vw1[VwRaw-1 -: 3]),
+    .sig_i(raw_vw1[3*EB +: 3*VwSigBits]),
+    .exp_i(raw_vw1[0 +: 3*EB]),
     .q_o  (q_num[1]),
     .exp_o(exp_num[1])
   );
@@ -334,14 +358,17 @@ module fxr_setup_fields #(
   localparam int PlaneIn = EdgeStages + AttrStages;  // cycle at which the planes start
   logic [3*QB-1:0] q_den_p, q_num_p [NV];
   logic [3*ZB-1:0] z_p;
-  fxr_pipe #(.Width(3 * QB + 3 * ZB), .Stages(PlaneIn)) u_pipe_qden (
+  fxr_pipe #(.Width(3 * ZB), .Stages(PlaneIn)) u_pipe_z (
     .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn-1:0]),
-    .d_i  ({q_den, v2_z_i, v1_z_i, v0_z_i}),
-    .q_o  ({q_den_p, z_p})
+    .d_i  ({v2_z_i, v1_z_i, v0_z_i}),
+    .q_o  (z_p)
+  );
+  fxr_pipe #(.Width(3 * QB), .Stages(PlaneIn - 1)) u_pipe_qden (
+    .clk_i(clk_i), .en_i(advance), .v_i(valid_q[PlaneIn-2:0]), .d_i(q_den), .q_o(q_den_p)
   );
   for (genvar m = 0; m < NV; m++) begin : g_qnum
-    fxr_pipe #(.Width(3 * QB), .Stages(PlaneIn)) u_pipe_qnum (
-      .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn-1:0]), .d_i(q_num[m]), .q_o(q_num_p[m])
+    fxr_pipe #(.Width(3 * QB), .Stages(PlaneIn - 1)) u_pipe_qnum (
+      .clk_i(clk_i), .en_i(advance), .v_i(valid_q[PlaneIn-2:0]), .d_i(q_num[m]), .q_o(q_num_p[m])
     );
   end
 
@@ -356,7 +383,7 @@ module fxr_setup_fields #(
     zup = 1'b0;
     zr  = '0;
     q_z = '0;
-    if (vs[PlaneIn]) begin
+    if (valid_q[PlaneIn-1]) begin
       for (int k = 0; k < 3; k++) begin
         zk  = z_p[k*ZB +: ZB];
         zup = zk[Db-1] & ((|zk[Db-2:0]) | zk[Db]);
@@ -369,18 +396,18 @@ module fxr_setup_fields #(
   // ---- planes (cycles 8-9) -------------------------------------------------------------------
   logic [ZPB-1:0] zc, zdx, zdy;
   fxr_setup_plane #(.AB(AB), .CWB(CWB), .SHB(SHB), .QB(ZQB), .PostBits(Db), .OutBits(ZPB)) u_plane_z (
-    .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn +: PlaneStages]), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_z),
+    .clk_i(clk_i), .en_i(advance), .v_i(valid_q[PlaneIn-1 +: PlaneStages]), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_z),
     .post_m_i(!use_attr), .c_o(zc), .dx_o(zdx), .dy_o(zdy)
   );
   logic [IPB-1:0] dc, ddx, ddy;
   fxr_setup_plane #(.AB(AB), .CWB(CWB), .SHB(SHB), .QB(QB), .PostBits(0), .OutBits(IPB)) u_plane_den (
-    .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn +: PlaneStages]), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_den_p),
+    .clk_i(clk_i), .en_i(advance), .v_i(valid_q[PlaneIn-1 +: PlaneStages]), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_den_p),
     .post_m_i(1'b0), .c_o(dc), .dx_o(ddx), .dy_o(ddy)
   );
   logic [IPB-1:0] nc [NV], ndx [NV], ndy [NV];
   for (genvar m = 0; m < NV; m++) begin : g_plane_num
     fxr_setup_plane #(.AB(AB), .CWB(CWB), .SHB(SHB), .QB(QB), .PostBits(0), .OutBits(IPB)) u_plane_num (
-      .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn +: PlaneStages]), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_num_p[m]),
+      .clk_i(clk_i), .en_i(advance), .v_i(valid_q[PlaneIn-1 +: PlaneStages]), .a_i(pa), .b_i(pb), .c_i(pc), .shift_i(pshift), .q_i(q_num_p[m]),
       .post_m_i(1'b0), .c_o(nc[m]), .dx_o(ndx[m]), .dy_o(ndy[m])
     );
   end
@@ -389,16 +416,16 @@ module fxr_setup_fields #(
   // snapped one (cycle 7), then beside the planes.
   logic [EVB-1:0] area2_p;
   fxr_pipe #(.Width(EVB), .Stages(AttrStages)) u_pipe_area2 (
-    .clk_i(clk_i), .en_i(advance), .v_i(vs[EdgeStages +: AttrStages]), .d_i(area2), .q_o(area2_p)
+    .clk_i(clk_i), .en_i(advance), .v_i(valid_q[EdgeStages-1 +: AttrStages]), .d_i(area2), .q_o(area2_p)
   );
   logic [ZDB-1:0] zden_d, zden;
   always_comb begin
     zden_d = '0;
-    if (vs[PlaneIn]) zden_d = use_attr ? ZDB'(area2_attr) << (ZFracBits - Db) : ZDB'(area2_p) << ZFracBits;
+    if (valid_q[PlaneIn-1]) zden_d = use_attr ? ZDB'(area2_attr) << (ZFracBits - Db) : ZDB'(area2_p) << ZFracBits;
   end
   logic [2*PB-1:0] anchor;
   fxr_pipe #(.Width(ZDB + 2 * PB), .Stages(PlaneStages)) u_pipe_zden (
-    .clk_i(clk_i), .en_i(advance), .v_i(vs[PlaneIn +: PlaneStages]), .d_i({zden_d, pi0, pj0}), .q_o({zden, anchor})
+    .clk_i(clk_i), .en_i(advance), .v_i(valid_q[PlaneIn-1 +: PlaneStages]), .d_i({zden_d, pi0, pj0}), .q_o({zden, anchor})
   );
 
   // ---- everything else beside the stages to the output (cycle 9) ----------------------------
@@ -411,16 +438,19 @@ module fxr_setup_fields #(
   logic             front_o_q;
   logic [PB-1:0]    bx0_o, bx1_o, by0_o, by1_o;
   fxr_pipe #(.Width(EdgeOut), .Stages(AttrStages + PlaneStages)) u_pipe_edges (
-    .clk_i(clk_i), .en_i(advance), .v_i(vs[EdgeStages +: AttrStages + PlaneStages]),
+    .clk_i(clk_i), .en_i(advance), .v_i(valid_q[EdgeStages-1 +: AttrStages + PlaneStages]),
     .d_i  ({outcome, ea, eb, ec, ebias, area2, front, bx0, bx1, by0, by1}),
     .q_o  ({outcome_o_q, ea_o, eb_o, ec_o, ebias_o, area2_o_q, front_o_q, bx0_o, bx1_o, by0_o, by1_o})
   );
   logic [PrimBits-1:0] prim_o_q;
   logic [EB-1:0]       exp_den_o, exp_num_o [NV];
-  fxr_pipe #(.Width(PrimBits + (1 + NV) * EB), .Stages(Latency)) u_pipe_prim (
-    .clk_i(clk_i), .en_i(advance), .v_i(vs[Latency-1:0]),
-    .d_i  ({prim_i, exp_den, exp_num[0], exp_num[1]}),
-    .q_o  ({prim_o_q, exp_den_o, exp_num_o[0], exp_num_o[1]})
+  fxr_pipe #(.Width(PrimBits), .Stages(Latency)) u_pipe_prim (
+    .clk_i(clk_i), .en_i(advance), .v_i(vs[Latency-1:0]), .d_i(prim_i), .q_o(prim_o_q)
+  );
+  fxr_pipe #(.Width((1 + NV) * EB), .Stages(Latency - 1)) u_pipe_exp (
+    .clk_i(clk_i), .en_i(advance), .v_i(valid_q[Latency-2:0]),
+    .d_i  ({exp_den, exp_num[0], exp_num[1]}),
+    .q_o  ({exp_den_o, exp_num_o[0], exp_num_o[1]})
   );
 
   // ---- outputs: 0 unless the triangle is drawn ----------------------------------------------

@@ -29,7 +29,7 @@ for m in fxr_pipe fxr_round fxr_input fxr_clip_core fxr_clip fxr_seed_rom fxr_nr
          fxr_divide_norm fxr_viewport_lane fxr_viewport_snap fxr_viewport_core fxr_viewport \
          fxr_setup_align fxr_setup_edges fxr_setup_attr fxr_setup_plane fxr_setup_fields fxr_setup \
          fxr_traverse fxr_interp fxr_depth fxr_divide fxr_div fxr_div_align fxr_div_radix2 \
-         fxr_div_radix2_pre fxr_div_radix2_step fxr_div_radix2_post fxr_div_recip_mul fxr_div_shared_recip \
+         fxr_div_radix2_pre fxr_div_radix2_post fxr_div_recip_mul fxr_div_shared_recip \
          fxr_raster_backend fxr_raster_unit; do
   srcs="$srcs $root/rtl/$m.sv"
 done
