@@ -293,18 +293,11 @@ module fxr_clip_core (
   logic t_kneg;
   logic [CM-1:0] t_kmag;
   logic [VB-1:0] t_v;
-  // The heavy datapath blocks are functions called once, in their state's branch of the
-  // clocked process (one instance each; a simulator evaluates them only in that state).
-  function automatic logic signed [DW-1:0] term_fixed(input logic kneg, input logic [CM-1:0] kmag,
-                                                      input logic [VB-1:0] v);
-    logic [CM+SB-1:0] prod;
-    logic signed [EB:0] sh;
-    logic [DW-1:0] mag;
-    prod = (CM + SB)'(kmag) * (CM + SB)'(v[VB-2 -: SB]);
-    sh = (EB + 1)'($signed(v[EB-1:0])) - (EB + 1)'(LsbMin);
-    mag = DW'(prod) << $unsigned(sh);  // sh >= 0: every value's lsb is at or above 2^LsbMin
-    term_fixed = (kneg ^ v[VB-1]) ? -$signed(mag) : $signed(mag);
-  endfunction
+  // The heavy datapath blocks are written out in their state's branch of the data process (one
+  // instance each; a simulator evaluates them only in that state), with variables of the process
+  // rather than function locals: Verilator declares an inlined function's locals in the C++
+  // function of the whole process and zeroes them on every call of it, i.e. every clock
+  // (VL_ZERO_W of 1,024-bit words; docs/rtl.md, "Co-simulation speed", session 9).
   logic [XB-1:0] dv;  // the vertex whose distance is being summed: s (SDist0/1) or e (SDist2/3)
   assign dv = (state == SDist0 || state == SDist1) ? cur_i : cur_j;
   always_comb begin
@@ -328,18 +321,8 @@ module fxr_clip_core (
   // padded below to a power of two, shifted by 2^l where its top 2^l bits are zero) rather than a
   // priority chain AW multiplexers deep; 0 for x = 0. Used for A (AW bits) and, placed at A's top,
   // for q (QW <= AW bits: the same count, the normalised q in the top QW bits).
+  // One normaliser, shared by SQuot and SNorm (the data process, below).
   localparam int AP = 1 << LzaBits;  // > AW
-  function automatic logic [LzaBits+AW-1:0] norm_a(input logic [AW-1:0] x);
-    logic [AP-1:0] v;
-    logic [LzaBits-1:0] lz;
-    v = AP'(x) << (AP - AW);
-    lz = '0;
-    for (int l = LzaBits - 1; l >= 0; l--) begin
-      lz = ((v >> (AP - (1 << l))) == '0) ? lz | (LzaBits'(1) << l) : lz;
-      v = ((v >> (AP - (1 << l))) == '0) ? v << (1 << l) : v;
-    end
-    norm_a = {(x == '0) ? '0 : lz, v[AP-1 -: AW]};
-  endfunction
 
   // ---- one component of the new vertex ---------------------------------------------------------
   // Component c of vertex x; the attribute w of a vertex is its wa, or its w_c where wa is 0
@@ -378,23 +361,8 @@ module fxr_clip_core (
     xmin = xs < xe ? xs : xe;
   end
 
-  // Shift-and-add step: acc*2 + (bit pos of sig_e*2^off_e)*te + (bit pos of sig_s*2^off_s)*ts.
-  function automatic logic signed [PW-1:0] acc_step();
-    logic be, bs;
-    logic signed [PosCntBits:0] pe, ps;
-    logic signed [PW-1:0] addend;
-    pe = $signed({1'b0, pos}) - $signed({1'b0, PosCntBits'(off_e)});
-    ps = $signed({1'b0, pos}) - $signed({1'b0, PosCntBits'(off_s)});
-    be = pe >= 0 && pe < $signed((PosCntBits + 1)'(SB)) && sig_e[pe[$clog2(SB)-1:0]];
-    bs = ps >= 0 && ps < $signed((PosCntBits + 1)'(SB)) && sig_s[ps[$clog2(SB)-1:0]];
-    case ({be, bs})
-      2'b11: addend = PW'(tsum);
-      2'b10: addend = PW'(te);
-      2'b01: addend = PW'(ts);
-      default: addend = '0;
-    endcase
-    acc_step = (acc <<< 1) + addend;
-  endfunction
+  // Shift-and-add step (SAcc, the data process): acc*2 + (bit pos of sig_e*2^off_e)*te + (bit pos
+  // of sig_s*2^off_s)*ts.
 
   // Rounding (RNE to bits_c, flush below 2^ClipFlushLeadExp; signed comparison).
   logic signed [IB-1:0] bits_s;
@@ -518,7 +486,25 @@ module fxr_clip_core (
     end
   end
 
-  always_ff @(posedge clk_i) begin
+  always_ff @(posedge clk_i) begin : p_data
+    // the shared normaliser's operand, its steps and result (SQuot, SNorm)
+    logic [AW-1:0] nrm_x;
+    logic [AP-1:0] nrm_v;
+    logic [LzaBits-1:0] nrm_lz;
+    logic signed [DW:0] q_raw;
+    if (state == SQuot || state == SNorm) begin
+      // SQuot: q = |d_s - d_e| placed at A's top (QW <= AW bits: the same count, the normalised q
+      // in the top QW bits); SNorm: |acc|
+      q_raw = DW1'(d_s) - DW1'(d_e);
+      nrm_x = (state == SQuot) ? {QW'(q_raw < 0 ? -q_raw : q_raw), ALB'(0)} : AW'(acc < 0 ? -acc : acc);
+      nrm_v = AP'(nrm_x) << (AP - AW);
+      nrm_lz = '0;
+      for (int l = LzaBits - 1; l >= 0; l--) begin
+        nrm_lz = ((nrm_v >> (AP - (1 << l))) == '0) ? nrm_lz | (LzaBits'(1) << l) : nrm_lz;
+        nrm_v = ((nrm_v >> (AP - (1 << l))) == '0) ? nrm_v << (1 << l) : nrm_v;
+      end
+      if (nrm_x == '0) nrm_lz = '0;
+    end
     case (state)
       SIdle: begin
         if (take) begin
@@ -570,25 +556,22 @@ module fxr_clip_core (
         end
       end
       SDist0, SDist1, SDist2, SDist3: begin
+        logic [CM+SB-1:0] t_prod;
+        logic signed [EB:0] t_sh;
+        logic [DW-1:0] t_mag;
         logic signed [DW-1:0] tv;
-        tv = term_fixed(t_kneg, t_kmag, t_v);
+        t_prod = (CM + SB)'(t_kmag) * (CM + SB)'(t_v[VB-2 -: SB]);
+        t_sh = (EB + 1)'($signed(t_v[EB-1:0])) - (EB + 1)'(LsbMin);
+        t_mag = DW'(t_prod) << $unsigned(t_sh);  // t_sh >= 0: every value's lsb is at or above 2^LsbMin
+        tv = (t_kneg ^ t_v[VB-1]) ? -$signed(t_mag) : $signed(t_mag);
         if (state == SDist0 || state == SDist2) d_acc <= tv - (pl_wmin[plane] ? WMinConst : '0);
         else if (state == SDist1) d_s <= d_acc + tv;
         else d_e <= d_acc + tv;
       end
       SQuot: begin
-        logic signed [DW:0] q_raw;
-        logic [QW-1:0] qm;
-        logic [LzaBits-1:0] lzq;
-        /* verilator lint_off UNUSEDSIGNAL */  // q's bits below its QW are the zeros placed there
-        logic [AW-1:0] qn;
-        /* verilator lint_on UNUSEDSIGNAL */
-        q_raw = DW1'(d_s) - DW1'(d_e);
         q_neg <= q_raw < 0;
-        qm = QW'(q_raw < 0 ? -q_raw : q_raw);
-        {lzq, qn} = norm_a({qm, ALB'(0)});
-        q_n <= qn[AW-1 -: QW];
-        q_lead <= IB'(QW - 1) - IB'(lzq);
+        q_n <= nrm_v[AP-1 -: QW];
+        q_lead <= IB'(QW - 1) - IB'(nrm_lz);
         comp <= '0;
       end
       SCompSet: begin
@@ -605,14 +588,27 @@ module fxr_clip_core (
         bits_c <= BitsW'(comp == 3 ? WBits : PosBits);
       end
       SAcc: begin
-        acc <= acc_step();
+        logic be, bs;
+        logic signed [PosCntBits:0] pe, ps;
+        logic signed [PW-1:0] addend;
+        pe = $signed({1'b0, pos}) - $signed({1'b0, PosCntBits'(off_e)});
+        ps = $signed({1'b0, pos}) - $signed({1'b0, PosCntBits'(off_s)});
+        be = pe >= 0 && pe < $signed((PosCntBits + 1)'(SB)) && sig_e[pe[$clog2(SB)-1:0]];
+        bs = ps >= 0 && ps < $signed((PosCntBits + 1)'(SB)) && sig_s[ps[$clog2(SB)-1:0]];
+        case ({be, bs})
+          2'b11: addend = PW'(tsum);
+          2'b10: addend = PW'(te);
+          2'b01: addend = PW'(ts);
+          default: addend = '0;
+        endcase
+        acc <= (acc <<< 1) + addend;
         pos <= pos - 1'b1;
       end
       SNorm: begin
-        logic [AW-1:0] a_mag, a_n;
+        logic [AW-1:0] a_n;
         logic [LzaBits-1:0] lza;
-        a_mag = AW'(acc < 0 ? -acc : acc);
-        {lza, a_n} = norm_a(a_mag);
+        a_n = nrm_v[AP-1 -: AW];
+        lza = nrm_lz;
         r_zero <= acc == '0;
         r_neg <= (acc < 0) ^ q_neg;
         rem <= {1'b0, a_n[AW-1 -: QW]};
@@ -636,8 +632,10 @@ module fxr_clip_core (
       end
       SRound: begin
         // one component slice per constant c: no run-time part select inside the word
+        logic [VB-1:0] rv;
+        rv = rnd_val();  // once, not in each of the loop's NumComp branches
         for (int c = 0; c < NumComp; c++)
-          if (32'(comp) == c) pbuf[slot(~bank, m)][(NumComp - 1 - c) * VB +: VB] <= rnd_val();
+          if (32'(comp) == c) pbuf[slot(~bank, m)][(NumComp - 1 - c) * VB +: VB] <= rv;
         if (32'(comp) == NumComp - 1) begin
           m <= m + 1'b1;
           created <= created + 1'b1;
