@@ -241,7 +241,7 @@ class FusedSpan {
     if (default_widths_) return run_nv(t, sp, z, DefaultWidths{}, out);
     return run_nv(t, sp, z, widths_, out);
   }
-  uint64_t run_w(const TriangleEquations& t, const Span& sp, const DepthStepper& dz, int64_t n, uint8_t* out) {
+  [[gnu::always_inline]] uint64_t run_w(const TriangleEquations& t, const Span& sp, const DepthStepper& dz, int64_t n, uint8_t* out) {
     if (default_widths_) return run_z(t, sp, dz, n, DefaultWidths{}, out);
     return run_z(t, sp, dz, n, widths_, out);
   }
