@@ -55,6 +55,16 @@ inline unsigned depth_relation(uint32_t incoming, uint32_t stored) {
   return (unsigned)(incoming >= stored) + (unsigned)(incoming > stored);
 }
 
+// Stage 8 at one pixel of a span: the test against the stored code (none without a depth
+// buffer: codes == nullptr) and the write of a passing code; both pixel loops of FusedSpan.
+[[gnu::always_inline]] inline bool depth_pass(uint32_t* codes, int64_t k, uint32_t code, unsigned mask, bool write) {
+  if (!codes) return true;
+  uint32_t& stored = codes[k];
+  const bool pass = (mask >> depth_relation(code, stored)) & 1u;
+  if (pass && write) stored = code;
+  return pass;
+}
+
 // The depth code at pixel (i, j) computed directly (DepthStepper's first division, rounding and
 // clamp).
 inline uint32_t depth_code_at(const DepthSetup& s, int i, int j) {
@@ -465,12 +475,7 @@ class FusedSpan {
         den_sig(dmag);
         for (; i < end; ++i) {
           const uint32_t code = z.code();
-          bool pass = true;
-          if (codes) {
-            uint32_t& stored = codes[i - x0];
-            pass = (mask >> depth_relation(code, stored)) & 1u;
-            if (pass && write) stored = code;
-          }
+          const bool pass = depth_pass(codes, i - x0, code, mask, write);
           pass_count += pass ? 1 : 0;
           // D's significand and reciprocal for this pixel were computed one pixel ahead (the
           // division issues while the previous pixel's quotients are still being worked on).
@@ -498,12 +503,7 @@ class FusedSpan {
       }
       for (; i < end; ++i) {
         const uint32_t code = z.code();
-        bool pass = true;
-        if (codes) {
-          uint32_t& stored = codes[i - x0];
-          pass = (mask >> depth_relation(code, stored)) & 1u;
-          if (pass && write) stored = code;
-        }
+        const bool pass = depth_pass(codes, i - x0, code, mask, write);
         pass_count += pass ? 1 : 0;
         if (kOut && pass) {
           put_fragment_header(rec, prim, (int32_t)i, y, code);

@@ -196,4 +196,26 @@ inline void expect_clean(const Tally& t, const char* what) {
   EXPECT_EQ(t.mismatches, 0u) << what << ": " << t.mismatches << " of " << t.cases << ", first: " << t.first;
 }
 
+// `rounds` random rounds of every path (seeded), each checked clean and each range test's two
+// outcomes both reached in more than a tenth of the cases: the CI test (10^6) and the slow one
+// (10^8) differ only in the count.
+struct RandomRounds {
+  Tally rqp, quot, rss, composed, align;
+};
+inline RandomRounds run_random_rounds(uint64_t seed, long rounds) {
+  std::mt19937_64 g(seed);
+  RandomRounds r;
+  for (long i = 0; i < rounds; ++i) random_round(g, r.rqp, r.quot, r.rss, r.composed, r.align);
+  expect_clean(r.rqp, "rne_quotient_plus64");
+  expect_clean(r.quot, "attr_quotient64");
+  expect_clean(r.rss, "round_scaled_sum64");
+  expect_clean(r.composed, "attr_window / attr_depth / snap_window");
+  expect_clean(r.align, "align_block");
+  for (const Tally* t : {&r.rqp, &r.quot, &r.rss, &r.align}) {
+    EXPECT_GT(t->fast, t->cases / 10);
+    EXPECT_LT(t->fast, t->cases - t->cases / 10);
+  }
+  return r;
+}
+
 }  // namespace fxr::fast64

@@ -9,18 +9,8 @@ namespace fxr::fast64 {
 namespace {
 
 TEST(AttrFast64Slow, HundredMillionRandomCasesOfEachPathEqualTheReference) {
-  std::mt19937_64 g(0xA77F64);
-  Tally rqp, quot, rss, composed, align;
-  for (long i = 0; i < 100000000; ++i) random_round(g, rqp, quot, rss, composed, align);
-  expect_clean(rqp, "rne_quotient_plus64");
-  expect_clean(quot, "attr_quotient64");
-  expect_clean(rss, "round_scaled_sum64");
-  expect_clean(composed, "attr_window / attr_depth / snap_window");
-  expect_clean(align, "align_block");
-  for (const Tally* t : {&rqp, &quot, &rss, &align}) {
-    EXPECT_GT(t->fast, t->cases / 10);
-    EXPECT_LT(t->fast, t->cases - t->cases / 10);
-  }
+  const RandomRounds r = run_random_rounds(0xA77F64, 100000000);
+  const Tally &rqp = r.rqp, &quot = r.quot, &rss = r.rss, &composed = r.composed, &align = r.align;
   std::printf("rne_quotient_plus64 %llu cases, %.1f %% fast; attr_quotient64 %llu, %.1f %%; round_scaled_sum64 %llu, "
               "%.1f %%; align_block %llu, %.1f %%; composed %llu; mismatches %llu\n",
               (unsigned long long)rqp.cases, 100.0 * (double)rqp.fast / (double)rqp.cases,

@@ -208,19 +208,7 @@ TEST(AttrFast64, AlignBlockRangeTestFlipsAtShift62AndAt63BitSignificands) {
 }
 
 TEST(AttrFast64, MillionRandomCasesEqualTheReferenceOnBothSidesOfEveryRangeTest) {
-  std::mt19937_64 g(0x5E551049);
-  Tally rqp, quot, rss, composed, align;
-  for (int i = 0; i < 1000000; ++i) random_round(g, rqp, quot, rss, composed, align);
-  expect_clean(rqp, "rne_quotient_plus64");
-  expect_clean(quot, "attr_quotient64");
-  expect_clean(rss, "round_scaled_sum64");
-  expect_clean(composed, "attr_window / attr_depth / snap_window");
-  expect_clean(align, "align_block");
-  // Both outcomes of each range test are reached often.
-  for (const Tally* t : {&rqp, &quot, &rss, &align}) {
-    EXPECT_GT(t->fast, t->cases / 10);
-    EXPECT_LT(t->fast, t->cases - t->cases / 10);
-  }
+  run_random_rounds(0x5E551049, 1000000);
 }
 
 TEST(AttrFast64, Float32VerticesTakeTheFastPathsAtTheDefaultWidths) {
