@@ -75,6 +75,7 @@ inline int clz128(u128 x) {
 
 // Position of the most significant set bit (0-based); -1 for 0.
 inline int msb_index(u128 x) { return 127 - clz128(x); }
+inline int msb64(uint64_t x) { return 63 - clz64(x); }
 
 // Low `width` bits of x, as unsigned.
 inline u128 low_bits(u128 x, int width) {

@@ -58,8 +58,6 @@ namespace {
 // FxFloat with a zero-exponent-safe view: sig as u128.
 inline u128 sig128(const FxFloat& f) { return (u128)f.sig; }
 
-inline int msb64(uint64_t x) { return 63 - clz64(x); }
-
 }  // namespace
 
 // ---- 64-bit paths (docs/speed.md "Session 9: per triangle") ------------------------------------

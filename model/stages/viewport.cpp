@@ -77,7 +77,7 @@ bool round_scaled_sum64(int64_t m, int e, int64_t c, int sh, int64_t* out) {
   }
   if (e >= 0) {
     const uint64_t mag = m < 0 ? (uint64_t)0 - (uint64_t)m : (uint64_t)m;
-    if (63 - clz64(mag) + e >= kSnapFast64Bits - 1) return false;
+    if (msb64(mag) + e >= kSnapFast64Bits - 1) return false;
     *out = rne(m * ((int64_t)1 << e) + c, sh);  // m may be < 0: no <<
     return true;
   }
