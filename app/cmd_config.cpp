@@ -1,6 +1,7 @@
 // `fxraster config`: print or export the configuration (JSON, SystemVerilog package, Markdown).
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "command.hpp"
 #include "model/config/arch_config.hpp"
@@ -26,8 +27,9 @@ fxr::app::Runner setup(CLI::App& sub) {
       return f;
     };
     if (!o->sv.empty()) {
-      auto f = open(o->sv);
-      fxr::emit_sv_package(f, cfg);
+      std::ostringstream os;
+      fxr::emit_sv_package(os, cfg);
+      fxr::app::write_file_if_changed(o->sv, os.str());  // unchanged: no re-verilation
     }
     if (!o->md.empty()) {
       auto f = open(o->md);

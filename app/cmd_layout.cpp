@@ -20,21 +20,6 @@ struct Opts {
   int varyings = fxr::kRecordPackageVaryings;
 };
 
-void write_file(const std::string& path, const std::string& text) {
-  // Written only when different, so the build does not recompile what did not change.
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (in) {
-      const std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      if (old == text) return;
-    }
-  }
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw fxr::ConfigError(path + ": cannot write");
-  out << text;
-  if (!out) throw fxr::ConfigError(path + ": write failed");
-}
-
 fxr::app::Runner setup(CLI::App& sub) {
   auto o = std::make_shared<Opts>();
   sub.add_option("--config", o->config, "configuration JSON (default: built-in defaults)");
@@ -52,19 +37,19 @@ fxr::app::Runner setup(CLI::App& sub) {
     if (!o->sv.empty()) {
       std::ostringstream os;
       fxr::emit_sv_vector_package(os, cfg);
-      write_file(o->sv, os.str());
+      fxr::app::write_file_if_changed(o->sv, os.str());
     }
     if (!o->rec_sv.empty()) {
       std::ostringstream os;
       fxr::emit_sv_record_package(os, cfg, o->varyings);
-      write_file(o->rec_sv, os.str());
+      fxr::app::write_file_if_changed(o->rec_sv, os.str());
     }
     if (!o->ports_dir.empty()) {
       std::filesystem::create_directories(o->ports_dir);
       for (const auto& u : fxr::vector_units()) {
         std::ostringstream os;
         fxr::emit_verilator_ports(os, u.name, u.make(cfg)->layout());
-        write_file(o->ports_dir + "/" + u.name + "_ports_gen.hpp", os.str());
+        fxr::app::write_file_if_changed(o->ports_dir + "/" + u.name + "_ports_gen.hpp", os.str());
       }
     }
     return 0;

@@ -37,6 +37,11 @@ void progress(const std::string& label, uint64_t done, uint64_t total);
 // ($FXRASTER_COSIM, else build/tb/fxraster-cosim), and a run of it with `arguments` (its exit
 // status: 0 match, 1 mismatch, 2 bad input or not built).
 std::string cosim_binary();
+
+// Writes `text` to `path` only when the file's content differs (throws fxr::ConfigError naming the
+// path when it cannot write). The build's generated packages go through it: an unchanged package
+// keeps its time stamp, so a new fxraster binary does not re-verilate every RTL model.
+void write_file_if_changed(const std::string& path, const std::string& text);
 int run_cosim(const std::vector<std::string>& arguments);
 
 }  // namespace fxr::app

@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <fstream>
+#include <iterator>
 #include <iostream>
 #include <map>
 #include <unistd.h>
@@ -29,6 +31,20 @@ void progress(const std::string& label, uint64_t done, uint64_t total) {
                  (unsigned long long)total, pct);
   }
   last_pct = done == total ? -1 : pct;
+}
+
+void write_file_if_changed(const std::string& path, const std::string& text) {
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (in) {
+      const std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (old == text) return;
+    }
+  }
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw fxr::ConfigError(path + ": cannot write");
+  out << text;
+  if (!out) throw fxr::ConfigError(path + ": write failed");
 }
 
 }  // namespace fxr::app
