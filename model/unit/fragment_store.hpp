@@ -147,6 +147,7 @@ class FragmentStore {
   size_t record_bytes() const { return stride_; }
 
   size_t size() const { return n_; }
+  size_t capacity() const { return cap_; }  // records the buffer holds before it must grow
   bool empty() const { return n_ == 0; }
   void clear() { n_ = 0; }
   void reserve(size_t n) {
@@ -210,6 +211,13 @@ class FragmentStore {
   void resize_for_overwrite(size_t n) {
     reserve(n);
     n_ = n;
+  }
+  // Contract: the memory of records [first, size()) for the caller to write in this store's
+  // layout (varyings checked by their writer), as write_at; valid until the store grows. Several
+  // threads may write disjoint records (the threaded driver's direct rows, model/unit/threads.cpp).
+  uint8_t* records_for_overwrite(size_t first) {
+    if (first > n_) throw std::logic_error("FragmentStore::records_for_overwrite: beyond size()");
+    return buf_ + first * stride_;
   }
   // Contract: records [dst, dst + count) (within size()) become records [first, first + count)
   // of `o` (same num_varyings), in one copy.

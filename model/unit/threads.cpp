@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstring>
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -96,6 +97,10 @@ constexpr uint64_t kWeightCap = uint64_t{1} << 62;
 constexpr uint64_t kNoStart = ~uint64_t{0};
 uint64_t add_weight(uint64_t a, uint64_t b) { return std::min(a + b, kWeightCap); }  // a, b ≤ kWeightCap
 
+// Rows sampled for a split step's estimated coverage (plan_split: the parts' boundaries fall on
+// a sample; the grazing plane's steps are 64–130 rows, sampled every row or two).
+constexpr int64_t kSplitSamples = 64;
+
 // A set-up triangle in a batch buffer, beside its equations.
 struct EqMeta {
   uint64_t start = 0;      // weight of the chunk's earlier triangles
@@ -139,6 +144,63 @@ void copy_used(const TriangleEquations& a, int nv, TriangleEquations& b) {
   }
 }
 
+// Thread 0's sink in a split step: records written straight into the frame's store, in its
+// layout, at most `cap` of them (its rows' candidate pixels) from `p` on.
+class WindowSink final : public FragmentSink {
+ public:
+  void reset(uint8_t* p, size_t cap, int nv) {
+    p_ = p, cap_ = cap, n_ = 0, nv_ = nv, stride_ = fragment_record_bytes(nv);
+  }
+  size_t count() const { return n_; }
+  void emit(const Fragment& f) override {
+    uint8_t* r = room(1);
+    put_fragment_header(r, f.prim, f.x, f.y, f.depth);
+    for (int k = 0; k < nv_; ++k) {
+      const FxFloat& v = f.var[k];
+      if (!fragment_var_storable(v.sig, v.exp)) throw std::logic_error("threads: a varying the compact record cannot hold");
+      put_fragment_var(r, k, v.sig, v.exp, v.neg);
+    }
+    ++n_;
+  }
+  void emit_span(const FragmentRecords& b) override {
+    if (b.num_varyings != nv_) throw std::logic_error("threads: a span of another record shape");
+    if (b.count) std::memcpy(room(b.count), b.data, b.count * stride_);
+    n_ += b.count;
+  }
+  uint8_t* span_space(size_t max_records, int num_varyings) override {
+    return num_varyings == nv_ ? room(max_records) : nullptr;
+  }
+  void span_done(size_t count) override { n_ += count; }
+
+ private:
+  uint8_t* room(size_t k) {
+    if (n_ + k > cap_) throw std::logic_error("threads: a split step's rows gave more records than candidate pixels");
+    return p_ + n_ * stride_;
+  }
+  uint8_t* p_ = nullptr;
+  size_t cap_ = 0, n_ = 0, stride_ = 0;
+  int nv_ = 0;
+};
+
+int64_t floor_div(int64_t n, int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }  // d > 0
+int64_t ceil_div(int64_t n, int64_t d) { return -floor_div(-n, d); }                     // d > 0
+
+// About how many pixels of row j the triangle covers: the pixel centres where no edge function
+// is negative (the top-left bias ignored), within the candidate columns. A split step's
+// scheduling weight only (model/unit/threads.hpp); never an output.
+int64_t row_coverage(const TriSetup& t, int64_t j) {
+  const int64_t one = int64_t{1} << t.g, half = one >> 1;
+  const int64_t Y = j * one + half;
+  int64_t lo = t.x0, hi = t.x1;
+  for (const EdgeEq& e : t.e) {
+    const int64_t v = e.b * Y + e.c;  // E = a·X + v at X = i·one + half
+    if (e.a > 0) lo = std::max(lo, ceil_div(-v - e.a * half, e.a * one));
+    else if (e.a < 0) hi = std::min(hi, floor_div(v + e.a * half, -e.a * one));
+    else if (v < 0) return 0;
+  }
+  return std::max<int64_t>(0, hi - lo + 1);
+}
+
 // A thread's records of one raster step and their runs (cache lines of their own: the thread
 // appends to one parity's, a record at a time, while the others read the other parity's).
 struct alignas(kCacheLineBytes) StepRecords {
@@ -159,6 +221,7 @@ struct alignas(kCacheLineBytes) Worker {
   size_t cur_r = 0;
   uint64_t cur_k = 0;
   uint64_t next_start = kNoStart;  // weight where this thread's next item starts (after a step)
+  size_t direct = 0;               // thread 0: records written straight into the frame (split step)
   std::exception_ptr error;
 };
 
@@ -357,6 +420,8 @@ class FrameRun {
     std::optional<FragmentChain<NoTaps>> chain;  // made after the depth buffer exists
     // The step's store, retargeted per step (KeepFragments: the span path, model/unit/backend.hpp).
     KeepFragments to_store(me.step[0].store);
+    WindowSink window;                                  // thread 0's rows of a split step …
+    std::optional<FragmentChain<NoTaps>> direct_chain;  // … and the chain writing them
     std::vector<SetupTriangle> pieces;
     InputTriangle in;
     for (;;) {
@@ -368,7 +433,11 @@ class FrameRun {
             phase(w, ThreadPhase::Raster);
             to_store.retarget(me.step[ctl_.rec_parity].store);
             if (!chain) chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, records_ ? &to_store : nullptr, taps);
-            raster(w, *chain);
+            raster(w, *chain, ctl_.split);
+            if (ctl_.split) {
+              if (w == 0 && !direct_chain) direct_chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, &window, taps);
+              raster_split(w, w == 0 ? *direct_chain : *chain, window);
+            }
           }
           if (ctl_.setup >= 0) {
             phase(w, ThreadPhase::Setup);
@@ -494,8 +563,9 @@ class FrameRun {
   }
 
   // Stages 6–10 on this thread's bands of the items of batch ctl_.raster that start below
-  // ctl_.raster_end; then me.next_start is where its next item starts.
-  void raster(int w, FragmentChain<NoTaps>& chain) {
+  // ctl_.raster_end (skip: none, only the cursor moves past them: a split step); then
+  // me.next_start is where its next item starts.
+  void raster(int w, FragmentChain<NoTaps>& chain, bool skip) {
     Worker& me = W_[(size_t)w];
     const int q = (int)(ctl_.raster & 1);
     const uint64_t end = ctl_.raster_end;
@@ -516,7 +586,7 @@ class FrameRun {
         const uint64_t width = (uint64_t)((int64_t)eq.edges.x1 - eq.edges.x0 + 1);
         const uint64_t start = add_weight(base, m.start);
         const int64_t items = m.items;
-        if (me.cur_r + 1 < list.size()) prefetch(b, list[me.cur_r + 1]);
+        if (!skip && me.cur_r + 1 < list.size()) prefetch(b, list[me.cur_r + 1]);
         for (; (int64_t)me.cur_k < items; ++me.cur_k) {
           const int64_t ra = y0 + (int64_t)me.cur_k * m.chunk, rb = std::min(y1, ra + m.chunk - 1);
           const uint64_t at = add_weight(start, me.cur_k * (uint64_t)m.chunk * width);
@@ -524,6 +594,7 @@ class FrameRun {
             me.next_start = at;
             return;
           }
+          if (skip) continue;
           const int64_t b0 = items == 1 ? m.b0 : band_of(ra), b1 = items == 1 ? m.b1 : band_of(rb);
           for (int64_t band = b0 + (int64_t)(((uint32_t)w + (uint32_t)T_ - (uint32_t)b0 % (uint32_t)T_) % (uint32_t)T_); band <= b1; band += T_) {
             const int64_t lo = std::max(ra, vy + band * R_), hi = std::min(rb, vy + band * R_ + R_ - 1);
@@ -535,6 +606,32 @@ class FrameRun {
       }
     }
     me.next_start = kNoStart;
+  }
+
+  // A split step (plan_split): stages 6–10 on this thread's contiguous part of the step's rows of
+  // its one triangle; thread 0's part leads the step's records and goes straight into the
+  // frame's store (from record window_base_), the others' into their step stores as one run.
+  void raster_split(int w, FragmentChain<NoTaps>& chain, WindowSink& window) {
+    const int64_t lo = ctl_.split_rows[(size_t)w], hi = ctl_.split_rows[(size_t)w + 1] - 1;
+    if (lo > hi) return;
+    const int q = (int)(ctl_.raster & 1);
+    const Batch& b = (*chunks_[q])[ctl_.split_chunk];
+    const TriangleEquations& eq = b.eqs[ctl_.split_tri];
+    if (w == 0) {
+      phase(0, ThreadPhase::Direct);
+      const size_t width = (size_t)((int64_t)eq.edges.x1 - eq.edges.x0 + 1);
+      window.reset(keep_->records_for_overwrite(window_base_), (size_t)(hi - lo + 1) * width, nv_);
+      chain.rows(eq, (int)lo, (int)hi);
+      W_[0].direct = window.count();
+      return;
+    }
+    Worker& me = W_[(size_t)w];
+    FragmentStore& store = me.step[ctl_.rec_parity].store;
+    const size_t before = store.size();
+    chain.rows(eq, (int)lo, (int)hi);
+    if (store.size() > before)
+      me.step[ctl_.rec_parity].runs.push_back(
+          {run_key(base_tri_[q][ctl_.split_chunk] + ctl_.split_tri, lo - st_.viewport_y), before, store.size() - before});
   }
 
   // The records of the previous raster step (parity q) at their place in the sequential order:
@@ -633,16 +730,18 @@ class FrameRun {
       size_t total = 0;
       uint64_t next = kNoStart;
       for (const Worker& w : W_) total += w.step[ctl_.rec_parity].store.size(), next = std::min(next, w.next_start);
-      if (records_) {
+      if (records_) {  // after the records thread 0 wrote straight into the frame (a split step)
         ctl_.out_parity = ctl_.rec_parity;
-        out_base_ = out_size_;
-        out_size_ += total;
+        out_base_ = out_size_ + W_[0].direct;
+        out_size_ = out_base_ + total;
         if (keep_) keep_->resize_for_overwrite(out_size_);
       }
+      W_[0].direct = 0;
       if (next == kNoStart) {
         ++rastered_;
         ctl_.raster = -1;
       } else {
+        raster_from_ = next;
         ctl_.raster_end = add_weight(next, step_);
       }
     }
@@ -667,6 +766,7 @@ class FrameRun {
       while (rastered_ < set_up_ && batch_empty_[rastered_ & 1]) ++rastered_;
       if (rastered_ < set_up_) {  // the next batch from its first item (weight 0)
         ctl_.raster = rastered_;
+        raster_from_ = 0;
         ctl_.raster_end = add_weight(0, step_);
         for (Worker& w : W_) w.cur_p = 0, w.cur_r = 0, w.cur_k = 0;
       }
@@ -679,7 +779,61 @@ class FrameRun {
       next_chunk_.store(0, std::memory_order_relaxed);
     }
     if (ctl_.raster >= 0) ctl_.rec_parity ^= 1;
+    plan_split();
     ctl_.done = ctl_.raster < 0 && ctl_.setup < 0 && ctl_.out_parity < 0;
+  }
+
+  // Whether the next raster step is a split step (model/unit/threads.hpp): the fragments kept,
+  // every item starting in [raster_from_, raster_end) of one triangle, at least a row per
+  // thread, and room in the frame's store for part 0's candidate pixels. Then its rows are cut
+  // into T_ contiguous parts of about equal estimated coverage and the store's size covers that
+  // room for thread 0 to write into.
+  void plan_split() {
+    ctl_.split = false;
+    if (!keep_ || T_ < 2 || ctl_.raster < 0 || ctl_.raster_end >= kWeightCap) return;
+    const int q = (int)(ctl_.raster & 1);
+    const uint64_t from = raster_from_, end = ctl_.raster_end;
+    size_t c = 0;
+    while (c < nchunks_[q] && !((*chunks_[q])[c].n > 0 && from - base_weight_[q][c] < (*chunks_[q])[c].weight)) ++c;
+    if (c == nchunks_[q] || from < base_weight_[q][c]) return;
+    const Batch& b = (*chunks_[q])[c];
+    const uint64_t rel = from - base_weight_[q][c];
+    const size_t i = (size_t)(std::upper_bound(b.meta.begin(), b.meta.begin() + (ptrdiff_t)b.n, rel,
+                                               [](uint64_t v, const EqMeta& m) { return v < m.start; }) -
+                              b.meta.begin()) - 1;
+    const EqMeta& m = b.meta[i];
+    const TriSetup& t = b.eqs[i].edges;
+    const uint64_t width = (uint64_t)((int64_t)t.x1 - t.x0 + 1), rows = (uint64_t)((int64_t)t.y1 - t.y0 + 1);
+    const uint64_t start = base_weight_[q][c] + m.start, item = (uint64_t)m.chunk * width;
+    if (start + rows * width < end || (from - start) % item != 0) return;  // another triangle's items in the step
+    const int64_t k0 = (int64_t)((from - start) / item), k1 = std::min<int64_t>(m.items - 1, (int64_t)((end - 1 - start) / item));
+    const int64_t ra = t.y0 + k0 * m.chunk, rb = std::min<int64_t>(t.y1, t.y0 + (k1 + 1) * m.chunk - 1);
+    if (rb - ra + 1 < T_) return;
+    // The parts: cumulative estimated coverage (+1 a row) over samples of `s` rows.
+    const int64_t n = rb - ra + 1, s = std::max<int64_t>(1, n / kSplitSamples);
+    split_weight_.clear();
+    uint64_t total = 0;
+    for (int64_t r = ra; r <= rb; r += s) {
+      total += (uint64_t)(row_coverage(t, r) + 1) * (uint64_t)std::min(s, rb - r + 1);
+      split_weight_.push_back(total);
+    }
+    ctl_.split_rows.assign((size_t)T_ + 1, rb + 1);
+    ctl_.split_rows[0] = ra;
+    size_t k = 0;
+    for (int p = 1; p < T_; ++p) {
+      const uint64_t goal = total * (uint64_t)p / (uint64_t)T_;
+      while (k < split_weight_.size() && split_weight_[k] <= goal) ++k;
+      ctl_.split_rows[(size_t)p] = std::min(rb + 1, ra + (int64_t)k * s);
+    }
+    // Room for part 0's candidate pixels within the store's capacity (the frame reserves the last
+    // frame's size; growing it here would copy the frame so far, serially): else bands.
+    const size_t room = out_size_ + (size_t)(ctl_.split_rows[1] - ra) * (size_t)width;
+    if (room > keep_->capacity()) return;
+    ctl_.split = true;
+    ctl_.split_chunk = c;
+    ctl_.split_tri = i;
+    window_base_ = out_size_;
+    keep_->resize_for_overwrite(room);
   }
 
   const Config& cfg_;
@@ -713,7 +867,13 @@ class FrameRun {
     uint64_t raster_end = 0;  // … its items that start below this weight
     int rec_parity = 1;       // buffers of this step's records (flips at each raster step)
     int out_parity = -1;      // buffers of the previous raster step, output in this step (−1: none)
+    bool split = false;       // a split step (plan_split): triangle split_tri of chunk split_chunk, …
+    size_t split_chunk = 0, split_tri = 0;
+    std::vector<int64_t> split_rows;  // … rows [split_rows[w], split_rows[w + 1]) on thread w
   } ctl_;
+  uint64_t raster_from_ = 0;  // the weight where the step being planned starts
+  size_t window_base_ = 0;    // a split step: thread 0's first record in the frame's store
+  std::vector<uint64_t> split_weight_;  // plan_split's cumulative weights (kept: no allocation per step)
   size_t out_base_ = 0, out_size_ = 0;  // first record of the step being output; records so far
   int64_t set_up_ = 0, rastered_ = 0;   // batches set up, batches rasterised
   bool batch_empty_[2] = {true, true};

@@ -21,7 +21,14 @@
 //     (triangle, band rows); in the next step each thread copies its runs into the frame's
 //     store at offsets ordered by (triangle, first row) — the sequential order — while the
 //     records are still in its cache (a sink is fed the runs in that order by the calling
-//     thread instead). The statistics are sums of per-thread counters.
+//     thread instead). The statistics are sums of per-thread counters;
+//   - a step whose items all belong to one triangle (a large triangle cut into row chunks: the
+//     grazing plane) is a *split step* when the fragments are kept: its rows are cut into
+//     `threads` contiguous parts of about equal estimated coverage instead of bands, part w on
+//     thread w (one triangle per step: every depth word still has one writer in triangle
+//     order). Part 0 leads the step's records, so thread 0 writes them straight into the
+//     frame's store at the step's first offset; only the other parts are copied in the next
+//     step (docs/speed.md "Session 10: threads").
 // The setup of batch k + 1 runs in the first raster step of batch k (two equation buffers). The
 // worker threads and their buffers persist between frames (one pool per calling thread).
 #pragma once
@@ -55,6 +62,7 @@ enum class ThreadPhase : uint8_t {
   Output,  // copying the previous step's records into the frame (or feeding the sink)
   Wait,    // waiting at the barrier between two steps
   Serial,  // the last thread at a barrier decides the next step (the others wait)
+  Direct,  // stages 6–10 on thread 0's rows of a split step, written straight into the frame
   Done,    // the frame is finished for this thread
 };
 class ThreadObserver {

@@ -8,6 +8,7 @@
 // compact fragment records (model/unit/fragment_store.hpp): round trip of extreme values.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <memory>
 #include <random>
@@ -480,4 +481,76 @@ TEST(Threads, MeshesThroughTheSharedVertexCacheEqualTheSequentialUnit) {
     }
   }
   check_case(c, {});  // (the sink and no-fragment paths)
+}
+
+namespace {
+
+// Counts the split steps' direct rows (ThreadPhase::Direct) per thread.
+class DirectCounter final : public ThreadObserver {
+ public:
+  void phase(int thread, ThreadPhase p) override {
+    if (p == ThreadPhase::Direct) ++(thread == 0 ? on_0 : elsewhere);
+  }
+  std::atomic<int> on_0{0}, elsewhere{0};
+};
+
+}  // namespace
+
+TEST(Threads, SplitStepsWriteThreadZerosRowsStraightIntoTheFrame) {
+  // Two large overlapping triangles (a grazing-plane-like quad and one in front of half of it):
+  // steps of one triangle's rows are split steps (contiguous parts, thread 0's records written
+  // straight into the frame's store), steps holding two triangles' items use the bands. The frame
+  // equals the sequential unit's at every thread count and step size, on a new frame (whose
+  // store first has no room: bands until it has grown) and on a reused one; a sink gets the same
+  // stream without any split step.
+  Case c;
+  c.name = "split";
+  c.st.viewport_x = -5, c.st.viewport_y = 4, c.st.viewport_w = 150, c.st.viewport_h = 110;
+  c.st.num_varyings = 2;
+  const auto vtx = [](float x, float y, float z, float w, float a, float b) {
+    ClipVertex v;
+    v.pos[0] = x * w, v.pos[1] = y * w, v.pos[2] = z * w, v.pos[3] = w, v.var[0] = a, v.var[1] = b;
+    return v;
+  };
+  const ClipVertex p = vtx(-0.95f, -0.9f, 0.2f, 1.0f, 0, 0), q = vtx(0.97f, -0.93f, 0.3f, 1.3f, 5, 0),
+                   r = vtx(0.6f, 0.95f, 0.9f, 3.5f, 5, 7), s = vtx(-0.7f, 0.9f, 0.8f, 3.0f, 0, 7);
+  c.tris = {ClipTriangle{{p, q, r}}, ClipTriangle{{p, r, s}},
+            ClipTriangle{{vtx(-0.3f, -0.8f, 0.1f, 1.0f, 1, 2), vtx(0.9f, 0.1f, 0.1f, 1.0f, 3, 4),
+                          vtx(-0.5f, 0.7f, 0.5f, 2.0f, 5, 6)}}};
+  const FrameOutput want = run_raster_unit(c.cfg, c.st, c.tris);
+  ASSERT_GT(want.fragments.size(), 10000u);
+  int split_frames = 0;
+  for (int t : {2, 3, 5})
+    for (int step : {40, 150, 1000, 4000, kThreadStepPixels})
+      for (int rows : {1, 8}) {
+        DirectCounter n;
+        ThreadOptions o;
+        o.threads = t, o.band_rows = rows, o.step_pixels = step, o.observer = &n;
+        const std::string what = "threads " + std::to_string(t) + " step " + std::to_string(step) + " rows " +
+                                 std::to_string(rows);
+        FrameOutput f;
+        for (int frame = 0; frame < 2; ++frame) {  // a new frame, then the same one reused
+          run_raster_unit_threads(c.cfg, c.st, c.tris, f, &f.fragments, nullptr, o);
+          expect_same_frame(want, f, 2, what + (frame ? " reused" : " new"));
+        }
+        EXPECT_EQ(n.elsewhere.load(), 0) << what;
+        // Split steps where a step holds at least a row per thread of one triangle: not at step 40
+        // (items of one row, ≈ 140 pixels wide: a row a step), at 150 only on 2 threads (two rows a
+        // step), nor at the default (whole triangles, several a step).
+        const bool split = step > 40 && step < kThreadStepPixels && (step > 150 || t == 2);
+        EXPECT_EQ(n.on_0.load() > 0, split) << what << ": split steps " << n.on_0.load();
+        split_frames += split;
+        DirectCounter none;
+        o.observer = &none;
+        struct Record : FragmentSink {
+          FragmentStore s{2};
+          void emit(const Fragment& fr) override { s.push_back(fr); }
+        } sink;
+        FrameOutput g;
+        run_raster_unit_threads(c.cfg, c.st, c.tris, g, nullptr, &sink, o);
+        g.fragments = sink.s;
+        expect_same_frame(want, g, 2, what + " sink");
+        EXPECT_EQ(none.on_0.load() + none.elsewhere.load(), 0) << what << ": a split step without a kept store";
+      }
+  EXPECT_EQ(split_frames, 14);
 }
