@@ -14,7 +14,7 @@
 //     loaded machine spends descheduled, the steady clock gives the wall time of the serial
 //     phases (Frame: the calling thread prepares the frame; Serial: the last thread at a
 //     barrier decides the next step) and of the waits.
-// Counters per frame: critical_ms (per step the busiest thread's CPU in Setup, Raster, Direct
+// Counters per frame: critical_ms (per step the busiest thread's CPU in Setup, Raster, Direct, Clear
 // and Output, summed, plus the serial phases: the frame's length on an idle machine, less the time
 // waiters take to see a barrier open), cpu_ms (process CPU), work_ms (the threads' CPU in every phase but
 // Wait), serial_pct (Frame + Serial wall time / frame wall time), wait_pct (thread wall time at
@@ -43,7 +43,7 @@ namespace {
 constexpr int kSize = 1024;
 const char* const kSceneNames[] = {"bunny", "plane"};
 constexpr int kPhases = (int)ThreadPhase::Done + 1;
-const char* const kPhaseNames[kPhases] = {"frame", "setup", "raster", "output", "wait", "serial", "direct", "done"};
+const char* const kPhaseNames[kPhases] = {"frame", "setup", "raster", "output", "wait", "serial", "direct", "clear", "done"};
 
 const PeerScene& scene(int id, int nv) {
   static std::map<int, std::unique_ptr<PeerScene>> cache;
@@ -79,7 +79,7 @@ class PhaseClock final : public ThreadObserver {
       s.wall[(size_t)s.cur] += std::chrono::duration<double>(now - s.wall_since).count();
       s.cpu[(size_t)s.cur] += cpu - s.cpu_since;
       if (s.cur == (int)ThreadPhase::Setup || s.cur == (int)ThreadPhase::Raster || s.cur == (int)ThreadPhase::Output ||
-          s.cur == (int)ThreadPhase::Direct)
+          s.cur == (int)ThreadPhase::Direct || s.cur == (int)ThreadPhase::Clear)
         s.busy += cpu - s.cpu_since;
     }
     if (p == ThreadPhase::Wait) s.steps.push_back(s.busy), s.busy = 0;
@@ -145,6 +145,8 @@ void BM_Threads(benchmark::State& state) {
     // raster: stages 6–10 wherever their records go (a split step's direct rows included).
     state.counters["raster_ms"] = 1e3 * (clock.cpu(ThreadPhase::Raster) + clock.cpu(ThreadPhase::Direct)) / n;
     state.counters["direct_ms"] = 1e3 * clock.cpu(ThreadPhase::Direct) / n;
+    // frame: the calling thread's new depth buffer, whether filled before the steps or in one.
+    state.counters["frame_ms"] = 1e3 * (clock.cpu(ThreadPhase::Frame) + clock.cpu(ThreadPhase::Clear)) / n;
     state.counters["serial_wall_s"] = clock.wall(ThreadPhase::Frame) + clock.wall(ThreadPhase::Serial);
     state.counters["wait_wall_s"] = clock.wall(ThreadPhase::Wait);
     state.counters["critical_ms"] = 1e3 * clock.critical() / n;

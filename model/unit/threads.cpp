@@ -386,19 +386,19 @@ class FrameRun {
     ctl_.fill_depth = reuse_depth_;
     ctl_.setup = nbatches_ > 0 ? 0 : -1;
     nchunks_[0] = (std::min(B_, tris_.size()) + C_ - 1) / C_;
+    // A new depth buffer: filled by the calling thread in step 1 (the first raster step), a band
+    // at a time, while the others rasterise the rows already filled; filled before the steps,
+    // the others waited for it whenever the first batch's setup was short (the grazing plane's 2
+    // triangles: docs/speed.md "Session 10: threads").
+    defer_clear_ = !reuse_depth_;
+    clear_rows_.store(0, std::memory_order_relaxed);
+    if (defer_clear_) {
+      f_.depth.clear();
+      f_.depth.reserve(words);  // the rows are appended by new_depth_rows (the data never moves)
+    }
     next_chunk_.store(0, std::memory_order_relaxed);
     ctl_.done = false;
-    auto body = [this, words](int w) {
-      if (w == 0 && !reuse_depth_) {
-        try {
-          f_.depth.assign(words, depth_max_code(cfg_.raster));
-        } catch (...) {
-          W_[0].error = std::current_exception();
-          failed_ = true;
-        }
-      }
-      thread_body(w);
-    };
+    auto body = [this](int w) { thread_body(w); };
     pool.run(body);
     for (Worker& w : W_)
       if (w.error) std::rethrow_exception(w.error);
@@ -428,6 +428,7 @@ class FrameRun {
       if (!failed_.load(std::memory_order_relaxed)) {
         try {
           if (ctl_.fill_depth) fill_depth(w);
+          if (ctl_.clear_new && w == 0) new_depth_rows();
           if (ctl_.out_parity >= 0) output(w, ctl_.out_parity);
           if (ctl_.raster >= 0) {
             phase(w, ThreadPhase::Raster);
@@ -436,7 +437,7 @@ class FrameRun {
             raster(w, *chain, ctl_.split);
             if (ctl_.split) {
               if (w == 0 && !direct_chain) direct_chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, &window, taps);
-              raster_split(w, w == 0 ? *direct_chain : *chain, window);
+              raster_split(w, *chain, w == 0 ? *direct_chain : *chain, window);
             }
           }
           if (ctl_.setup >= 0) {
@@ -465,7 +466,29 @@ class FrameRun {
       });
       if (ctl_.done) break;
     }
+    if (w == 0 && !failed_.load(std::memory_order_relaxed)) new_depth_rows();  // a frame that ended before
     if (w != 0) phase(w, ThreadPhase::Done);
+  }
+
+  // Thread 0: the rest of a deferred new depth buffer, a band at a time, each published
+  // (clear_rows_: rows from the viewport's bottom) for the threads waiting to rasterise it.
+  void new_depth_rows() {
+    const size_t words = (size_t)f_.width * (size_t)f_.height;
+    if (f_.depth.size() >= words) return;
+    phase(0, ThreadPhase::Clear);
+    const uint32_t code = depth_max_code(cfg_.raster);
+    for (int64_t r = (int64_t)(f_.depth.size() / (size_t)f_.width); r < f_.height;) {
+      const int64_t n = std::min<int64_t>(R_, f_.height - r);
+      f_.depth.insert(f_.depth.end(), (size_t)(n * f_.width), code);  // within the reserved capacity
+      r += n;
+      clear_rows_.store(r, std::memory_order_release);
+    }
+  }
+  // Before a thread other than 0 rasterises up to row `row` (from the viewport's bottom) in the
+  // step that fills a new depth buffer: wait until thread 0 has filled it.
+  void wait_rows(int64_t row) {
+    if (!ctl_.clear_new) return;
+    while (clear_rows_.load(std::memory_order_acquire) <= row) cpu_relax();
   }
 
   // Step 0 with a reused depth buffer: this thread's bands cleared.
@@ -599,6 +622,7 @@ class FrameRun {
           for (int64_t band = b0 + (int64_t)(((uint32_t)w + (uint32_t)T_ - (uint32_t)b0 % (uint32_t)T_) % (uint32_t)T_); band <= b1; band += T_) {
             const int64_t lo = std::max(ra, vy + band * R_), hi = std::min(rb, vy + band * R_ + R_ - 1);
             const size_t before = store.size();
+            wait_rows(hi - vy);
             chain.rows(eq, (int)lo, (int)hi);
             if (store.size() > before) runs.push_back({run_key(tri0 + i, lo - vy), before, store.size() - before});
           }
@@ -610,28 +634,43 @@ class FrameRun {
 
   // A split step (plan_split): stages 6–10 on this thread's contiguous part of the step's rows of
   // its one triangle; thread 0's part leads the step's records and goes straight into the
-  // frame's store (from record window_base_), the others' into their step stores as one run.
-  void raster_split(int w, FragmentChain<NoTaps>& chain, WindowSink& window) {
-    const int64_t lo = ctl_.split_rows[(size_t)w], hi = ctl_.split_rows[(size_t)w + 1] - 1;
-    if (lo > hi) return;
+  // frame's store (from record window_base_, through `direct`), the others' into their step
+  // stores as one run. In the step that fills a new depth buffer the rows are claimed instead, a
+  // piece of band_rows rows at a time, by whichever thread is free (thread 0 once it has filled).
+  void raster_split(int w, FragmentChain<NoTaps>& chain, FragmentChain<NoTaps>& direct, WindowSink& window) {
     const int q = (int)(ctl_.raster & 1);
     const Batch& b = (*chunks_[q])[ctl_.split_chunk];
     const TriangleEquations& eq = b.eqs[ctl_.split_tri];
+    if (ctl_.clear_new) {  // the step that fills a new depth buffer: pieces claimed in row order
+      const int64_t ra = ctl_.split_rows[0], rb = ctl_.split_rows[(size_t)T_] - 1;
+      for (;;) {
+        const int64_t lo = ra + (int64_t)next_piece_.fetch_add(1, std::memory_order_relaxed) * R_;
+        if (lo > rb) return;
+        split_rows(w, chain, eq, lo, std::min(rb, lo + R_ - 1));
+      }
+    }
+    const int64_t lo = ctl_.split_rows[(size_t)w], hi = ctl_.split_rows[(size_t)w + 1] - 1;
+    if (lo > hi) return;
     if (w == 0) {
       phase(0, ThreadPhase::Direct);
       const size_t width = (size_t)((int64_t)eq.edges.x1 - eq.edges.x0 + 1);
       window.reset(keep_->records_for_overwrite(window_base_), (size_t)(hi - lo + 1) * width, nv_);
-      chain.rows(eq, (int)lo, (int)hi);
+      direct.rows(eq, (int)lo, (int)hi);
       W_[0].direct = window.count();
       return;
     }
-    Worker& me = W_[(size_t)w];
-    FragmentStore& store = me.step[ctl_.rec_parity].store;
-    const size_t before = store.size();
+    split_rows(w, chain, eq, lo, hi);
+  }
+  // Rows lo … hi of a split step's triangle into this thread's step store, as one run.
+  void split_rows(int w, FragmentChain<NoTaps>& chain, const TriangleEquations& eq, int64_t lo, int64_t hi) {
+    StepRecords& rec = W_[(size_t)w].step[ctl_.rec_parity];
+    const size_t before = rec.store.size();
+    wait_rows(hi - st_.viewport_y);
     chain.rows(eq, (int)lo, (int)hi);
-    if (store.size() > before)
-      me.step[ctl_.rec_parity].runs.push_back(
-          {run_key(base_tri_[q][ctl_.split_chunk] + ctl_.split_tri, lo - st_.viewport_y), before, store.size() - before});
+    const int q = (int)(ctl_.raster & 1);
+    if (rec.store.size() > before)
+      rec.runs.push_back({run_key(base_tri_[q][ctl_.split_chunk] + ctl_.split_tri, lo - st_.viewport_y), before,
+                          rec.store.size() - before});
   }
 
   // The records of the previous raster step (parity q) at their place in the sequential order:
@@ -725,6 +764,8 @@ class FrameRun {
   // Between two steps, on the last thread to arrive: what the next step does.
   void decide() {
     ctl_.fill_depth = false;
+    ctl_.clear_new = defer_clear_;  // the step after step 0 fills a deferred new depth buffer
+    defer_clear_ = false;
     ctl_.out_parity = -1;
     if (ctl_.raster >= 0) {  // the step's records go out in the next step
       size_t total = 0;
@@ -819,8 +860,12 @@ class FrameRun {
     }
     ctl_.split_rows.assign((size_t)T_ + 1, rb + 1);
     ctl_.split_rows[0] = ra;
+    if (ctl_.clear_new) {  // rows claimed a band_rows piece at a time, thread 0 once it has filled
+      ctl_.split_rows[1] = ra;  // the new depth buffer (its part: none written straight)
+      next_piece_.store(0, std::memory_order_relaxed);
+    }
     size_t k = 0;
-    for (int p = 1; p < T_; ++p) {
+    for (int p = 1; p < T_ && !ctl_.clear_new; ++p) {
       const uint64_t goal = total * (uint64_t)p / (uint64_t)T_;
       while (k < split_weight_.size() && split_weight_[k] <= goal) ++k;
       ctl_.split_rows[(size_t)p] = std::min(rb + 1, ra + (int64_t)k * s);
@@ -855,6 +900,11 @@ class FrameRun {
   Barrier barrier_;
   std::atomic<bool> failed_{false};
   bool reuse_depth_ = false;
+  bool defer_clear_ = false;  // a new depth buffer, filled by thread 0 in step 1 …
+  alignas(kCacheLineBytes) std::atomic<int64_t> clear_rows_{0};  // … rows filled so far
+  char pad2_[kCacheLineBytes - sizeof(std::atomic<int64_t>)];
+  alignas(kCacheLineBytes) std::atomic<uint64_t> next_piece_{0};  // that step's next piece of rows
+  char pad3_[kCacheLineBytes - sizeof(std::atomic<uint64_t>)];
   SharedVertexTable* vertices_ = nullptr;  // the threads' vertex cache table, or none
   int band_shift_ = -1;  // log2 band_rows when a power of two
 
@@ -862,6 +912,7 @@ class FrameRun {
   struct Control {
     bool done = false;
     bool fill_depth = false;
+    bool clear_new = false;   // thread 0 fills the new depth buffer first; the others wait for their rows
     int64_t setup = -1;       // batch set up in this step (−1: none)
     int64_t raster = -1;      // batch rasterised in this step (−1: none) …
     uint64_t raster_end = 0;  // … its items that start below this weight

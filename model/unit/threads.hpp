@@ -28,7 +28,10 @@
 //     thread w (one triangle per step: every depth word still has one writer in triangle
 //     order). Part 0 leads the step's records, so thread 0 writes them straight into the
 //     frame's store at the step's first offset; only the other parts are copied in the next
-//     step (docs/speed.md "Session 10: threads").
+//     step (docs/speed.md "Session 10: threads");
+//   - a new depth buffer is filled by the calling thread in the first raster step (step 1), a
+//     band at a time, while the others rasterise the rows already filled (that step's rows of a
+//     split step are claimed in pieces of band_rows rows by whichever thread is free).
 // The setup of batch k + 1 runs in the first raster step of batch k (two equation buffers). The
 // worker threads and their buffers persist between frames (one pool per calling thread).
 #pragma once
@@ -56,13 +59,14 @@ inline constexpr int kThreadSetupChunkPrims = 64;
 // The phases a thread of run_raster_unit_threads goes through, reported to a ThreadObserver
 // (a bench times them; the model never reads a clock).
 enum class ThreadPhase : uint8_t {
-  Frame,   // the calling thread prepares the frame (validation, depth buffer)
+  Frame,   // the calling thread prepares the frame (validation, buffers)
   Setup,   // stages 1–5 on this thread's share of a batch
   Raster,  // stages 6–10 on this thread's bands of a step
   Output,  // copying the previous step's records into the frame (or feeding the sink)
   Wait,    // waiting at the barrier between two steps
   Serial,  // the last thread at a barrier decides the next step (the others wait)
   Direct,  // stages 6–10 on thread 0's rows of a split step, written straight into the frame
+  Clear,   // thread 0 fills a new depth buffer within the first raster step
   Done,    // the frame is finished for this thread
 };
 class ThreadObserver {

@@ -485,13 +485,15 @@ TEST(Threads, MeshesThroughTheSharedVertexCacheEqualTheSequentialUnit) {
 
 namespace {
 
-// Counts the split steps' direct rows (ThreadPhase::Direct) per thread.
+// Counts the split steps' direct rows (ThreadPhase::Direct) per thread, and thread 0's fills
+// of a new depth buffer within a step (ThreadPhase::Clear).
 class DirectCounter final : public ThreadObserver {
  public:
   void phase(int thread, ThreadPhase p) override {
     if (p == ThreadPhase::Direct) ++(thread == 0 ? on_0 : elsewhere);
+    if (p == ThreadPhase::Clear) ++(thread == 0 ? clear : elsewhere);
   }
-  std::atomic<int> on_0{0}, elsewhere{0};
+  std::atomic<int> on_0{0}, elsewhere{0}, clear{0};
 };
 
 }  // namespace
@@ -501,8 +503,9 @@ TEST(Threads, SplitStepsWriteThreadZerosRowsStraightIntoTheFrame) {
   // steps of one triangle's rows are split steps (contiguous parts, thread 0's records written
   // straight into the frame's store), steps holding two triangles' items use the bands. The frame
   // equals the sequential unit's at every thread count and step size, on a new frame (whose
-  // store first has no room: bands until it has grown) and on a reused one; a sink gets the same
-  // stream without any split step.
+  // store first has no room: bands until it has grown; its depth buffer filled by thread 0 in
+  // the first raster step, whose rows the threads claim) and on a reused one; a sink gets the
+  // same stream without any split step.
   Case c;
   c.name = "split";
   c.st.viewport_x = -5, c.st.viewport_y = 4, c.st.viewport_w = 150, c.st.viewport_h = 110;
@@ -530,8 +533,10 @@ TEST(Threads, SplitStepsWriteThreadZerosRowsStraightIntoTheFrame) {
                                  std::to_string(rows);
         FrameOutput f;
         for (int frame = 0; frame < 2; ++frame) {  // a new frame, then the same one reused
+          n.clear = 0;
           run_raster_unit_threads(c.cfg, c.st, c.tris, f, &f.fragments, nullptr, o);
           expect_same_frame(want, f, 2, what + (frame ? " reused" : " new"));
+          EXPECT_EQ(n.clear.load(), frame ? 0 : 1) << what << ": a new depth buffer filled within a step";
         }
         EXPECT_EQ(n.elsewhere.load(), 0) << what;
         // Split steps where a step holds at least a row per thread of one triangle: not at step 40
@@ -553,4 +558,8 @@ TEST(Threads, SplitStepsWriteThreadZerosRowsStraightIntoTheFrame) {
         EXPECT_EQ(none.on_0.load() + none.elsewhere.load(), 0) << what << ": a split step without a kept store";
       }
   EXPECT_EQ(split_frames, 14);
+  // No triangle: no raster step; the new depth buffer is still filled (after the steps).
+  ThreadOptions o;
+  o.threads = 2;
+  expect_same_frame(run_raster_unit(c.cfg, c.st, {}), run_raster_unit(c.cfg, c.st, {}, o), 2, "no triangle");
 }
