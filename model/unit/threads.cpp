@@ -488,7 +488,10 @@ class FrameRun {
   // step that fills a new depth buffer: wait until thread 0 has filled it.
   void wait_rows(int64_t row) {
     if (!ctl_.clear_new) return;
-    while (clear_rows_.load(std::memory_order_acquire) <= row) cpu_relax();
+    for (unsigned i = 1; clear_rows_.load(std::memory_order_acquire) <= row; ++i) {
+      cpu_relax();
+      if ((i & 255) == 0) std::this_thread::yield();  // more threads than cores: let thread 0 run
+    }
   }
 
   // Step 0 with a reused depth buffer: this thread's bands cleared.
