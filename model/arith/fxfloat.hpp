@@ -52,26 +52,33 @@ inline float f32_from_bits(uint32_t u) {
 //   Normal: sig = 2^23 | frac (24 bits), exp = E − 127 − 23.
 //   Denormal: sig = frac (< 2^23, not normalised), exp = −126 − 23 (exact, nothing flushed).
 //   Zero: sig = 0, neg = sign bit (−0 keeps its sign). Inf / NaN: cls says so, sig = 0.
+inline F32Class decode_f32_to(uint32_t bits, FxFloat& v);
 inline F32Decoded decode_f32(uint32_t bits) {
   F32Decoded d;
+  d.cls = decode_f32_to(bits, d.value);
+  return d;
+}
+// The same, the value written into `v` (every member: the class returned). For a caller that
+// keeps the value in place (convert_vertex: a returned F32Decoded copied into the vertex stalled
+// on store forwarding, docs/speed.md "Session 10: per triangle").
+inline F32Class decode_f32_to(uint32_t bits, FxFloat& v) {
   const bool neg = bits >> 31;
   const int e = (int)((bits >> kF32FracBits) & kF32ExpMax);
   const uint32_t frac = bits & ((1u << kF32FracBits) - 1);
-  d.value.neg = neg;
+  v.neg = neg;
   if (e == kF32ExpMax) {
-    d.cls = frac ? F32Class::NaN : F32Class::Inf;
-    return d;
+    v.sig = 0;
+    v.exp = 0;
+    return frac ? F32Class::NaN : F32Class::Inf;
   }
   if (e == 0) {
-    d.cls = frac ? F32Class::Denormal : F32Class::Zero;
-    d.value.sig = frac;
-    d.value.exp = 1 - kF32ExpBias - kF32FracBits;
-    return d;
+    v.sig = frac;
+    v.exp = 1 - kF32ExpBias - kF32FracBits;
+    return frac ? F32Class::Denormal : F32Class::Zero;
   }
-  d.cls = F32Class::Normal;
-  d.value.sig = (1u << kF32FracBits) | frac;
-  d.value.exp = e - kF32ExpBias - kF32FracBits;
-  return d;
+  v.sig = (1u << kF32FracBits) | frac;
+  v.exp = e - kF32ExpBias - kF32FracBits;
+  return F32Class::Normal;
 }
 
 // Contract: rescales x to a significand of exactly `bits` bits with its msb set

@@ -144,8 +144,9 @@ class GeometryChain {
     return &cached_;
   }
 
-  // A hint (VertexCache::prefetch): primitive `tri` comes soon; no effect on any output.
-  void prefetch(const ClipTriangle& tri) const {
+  // A hint (VertexCache::prefetch): primitive `tri` comes soon; no effect on any output. The
+  // slots it locates are kept for cached() on the same object (`tri` must stay in place).
+  void prefetch(const ClipTriangle& tri) {
     if constexpr (std::is_same<Taps, NoTaps>::value) cache_.prefetch(tri);
   }
 

@@ -64,6 +64,11 @@ inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardB
 
 class VertexCache;
 
+// The vertex table's word: slots, the varyings after a slot's key words and a shared slot's
+// atomic accesses are aligned to it. vertex_table_words: table words holding `bytes` bytes.
+inline constexpr size_t kVertexTableWordBytes = sizeof(uint64_t);
+constexpr size_t vertex_table_words(size_t bytes) { return (bytes + kVertexTableWordBytes - 1) / kVertexTableWordBytes; }
+
 // A table of vertex-cache slots that several VertexCaches share (VertexCache::share: the threads
 // of model/unit/threads.cpp, one cache object each), kept from draw to draw. begin() before each
 // draw empties it: a new epoch, written into every slot filled during the draw, makes the slots
@@ -72,7 +77,7 @@ class VertexCache;
 class SharedVertexTable {
  public:
   void begin(int num_varyings) {
-    const size_t words = kVertexCacheBytes / sizeof(uint64_t);
+    const size_t words = kVertexCacheBytes / kVertexTableWordBytes;
     if (words_.size() != words || nv_ != num_varyings || epoch_ == kMaxEpoch) {
       words_.assign(words, 0);
       epoch_ = 0;
@@ -111,15 +116,16 @@ class VertexCache {
     if (!usable_) return false;
     if (++prims_ <= min_prims_) return false;
     if (!table_) allocate();
-    // The three slots are looked up after all three are requested (their cache misses overlap).
-    uint32_t key[3][4 + kMaxVaryings];
+    // The slots prefetch() located for this triangle (its ring entry, used once), else located
+    // and requested here, all three before any is read (their cache misses overlap).
     unsigned char* slot[3];
-    for (int i = 0; i < 3; ++i) {
-      slot[i] = locate(tri.v[i], key[i]);
-      prefetch_slot(slot[i]);
-    }
+    if (!take_prefetched(tri, slot))
+      for (int i = 0; i < 3; ++i) {
+        slot[i] = slot_of(tri.v[i]);
+        prefetch_slot(slot[i]);
+      }
     for (int i = 0; i < 3; ++i)
-      if (!vertex(tri.v[i], key[i], slot[i], out.v[i])) return false;
+      if (!vertex(tri.v[i], slot[i], out.v[i])) return false;
     out.prim = prim;
     return true;
   }
@@ -128,9 +134,20 @@ class VertexCache {
   // of `tri` (a later triangle of the draw) and prefetches them, so that triangle() for it finds
   // them in the cache (docs/speed.md "Session 9: per triangle": the table's memory latency was
   // most of a hit's cost). Nothing before the table exists (the first kVertexCacheMinPrims).
-  void prefetch(const ClipTriangle& tri) const {
+  // The slot numbers are kept in a ring of kPrefetchRing entries tagged with the address of
+  // `tri`: triangle() on the same ClipTriangle object takes them instead of hashing its keys a
+  // second time (docs/speed.md "Session 10: per triangle"). They are hints too: triangle()
+  // compares the key in the slot, and a slot only ever holds accepted_vertex of the key written
+  // in it, so a stale entry (the object rewritten between the two calls) cannot change an
+  // answer; at most a hit or miss counter.
+  void prefetch(const ClipTriangle& tri) {
     if (!table_) return;
-    for (int i = 0; i < 3; ++i) prefetch_slot(reinterpret_cast<const unsigned char*>(table_ + index(tri.v[i]) * stride_));
+    Pending& e = ring_[ring_next_++ % kPrefetchRing];
+    e.tri = &tri;
+    for (int i = 0; i < 3; ++i) {
+      e.slot[i] = (uint32_t)index(tri.v[i]);
+      prefetch_slot(reinterpret_cast<const unsigned char*>(table_ + e.slot[i] * stride_));
+    }
   }
 
   // Contract: this cache looks up and fills `table` (begun for this draw's varying count) instead
@@ -141,7 +158,8 @@ class VertexCache {
   // draw's output does not depend on how its threads interleave.
   void share(SharedVertexTable& table) {
     if (!usable_ || table.nv_ != nv_) return;  // (a table begun for another draw: not shared)
-    layout(table.words_.size() * sizeof(uint64_t));
+    layout(table.words_.size() * kVertexTableWordBytes);
+    forget_prefetched();
     table_ = table.words_.data();
     epoch_ = table.epoch_;
     shared_ = true;
@@ -166,31 +184,46 @@ class VertexCache {
   static constexpr size_t kKeyOffset = sizeof(Head);
   static_assert(offsetof(Head, seq) == sizeof(uint32_t), "state and seq are the head's first 64-bit word");
 
+  static constexpr size_t kWordBytes = kVertexTableWordBytes;
+  static constexpr size_t round_up_to_word(size_t bytes) { return vertex_table_words(bytes) * kWordBytes; }
   static constexpr size_t kMaxSlotWords =
-      ((kKeyOffset + (4 + kMaxVaryings) * sizeof(uint32_t) + 7) / 8 * 8 + kMaxVaryings * sizeof(FxFloat) + 7) / 8;
+      vertex_table_words(vertex_table_words(kKeyOffset + (4 + kMaxVaryings) * sizeof(uint32_t)) * kWordBytes +
+                         kMaxVaryings * sizeof(FxFloat));
+  static_assert(kKeyOffset % kWordBytes == 0, "the key words start on a table word");
 
   // The slot layout of nv_ varyings, in a table of at most `bytes`.
   void layout(size_t bytes) {
     kw_ = 4 + (size_t)nv_;
-    vw_offset_ = (kKeyOffset + kw_ * sizeof(uint32_t) + 7) / 8 * 8;
-    stride_ = (vw_offset_ + (size_t)nv_ * sizeof(FxFloat) + 7) / 8;  // in 64-bit words
-    while (bits_ > 8 && ((stride_ * 8) << bits_) > bytes) --bits_;
+    vw_offset_ = round_up_to_word(kKeyOffset + kw_ * sizeof(uint32_t));
+    stride_ = round_up_to_word(vw_offset_ + (size_t)nv_ * sizeof(FxFloat)) / kWordBytes;  // in words
+    while (bits_ > 8 && ((stride_ * kWordBytes) << bits_) > bytes) --bits_;
   }
   void allocate() {
     layout(kVertexCacheBytes);
     buf_.assign(stride_ << bits_, 0);  // state 0 = kEmpty
+    forget_prefetched();
     table_ = buf_.data();
   }
   bool filled(uint32_t state) const { return state != kEmpty && state >> 2 == epoch_; }
-  // The slot's key words equal `key` (a loop over the 4 + nv words: std::memcmp of a run-time
-  // length stayed a libc call, 3 % of the bunny's profile).
-  bool same_key(const unsigned char* slot, const uint32_t* key) const {
+  // A vertex's key words are its float32 bits in place: pos[0 … 3], then var[0 … nv) (the
+  // words past 4 + nv_ are never read). Neither compared nor hashed through a copy (an 80-byte
+  // copy of the key to the stack per vertex, read back at once: docs/speed.md "Session 10").
+  static_assert(offsetof(ClipVertex, var) == sizeof(ClipVertex::pos) &&
+                    sizeof(ClipVertex::pos) == 4 * sizeof(uint32_t) && sizeof(float) == sizeof(uint32_t),
+                "a vertex's key words are contiguous");
+  static const unsigned char* key_bytes(const ClipVertex& cv) { return reinterpret_cast<const unsigned char*>(&cv); }
+  static uint32_t key_word(const unsigned char* k, size_t w) {
+    uint32_t v;
+    std::memcpy(&v, k + w * sizeof(uint32_t), sizeof(uint32_t));
+    return v;
+  }
+  // The slot's key words equal the vertex's (a loop over the 4 + nv words: std::memcmp of a
+  // run-time length stayed a libc call, 3 % of the bunny's profile).
+  bool same_key(const unsigned char* slot, const ClipVertex& cv) const {
     const unsigned char* k = slot + kKeyOffset;
-    for (size_t w = 0; w < kw_; ++w) {
-      uint32_t v;
-      std::memcpy(&v, k + w * sizeof(uint32_t), sizeof(uint32_t));
-      if (v != key[w]) return false;
-    }
+    const unsigned char* c = key_bytes(cv);
+    for (size_t w = 0; w < kw_; ++w)
+      if (key_word(k, w) != key_word(c, w)) return false;
     return true;
   }
 
@@ -214,65 +247,77 @@ class VertexCache {
   void copy_varyings(FxFloat* vw, const unsigned char* from) const {
     copy_units<sizeof(FxFloat)>(vw, from, (size_t)nv_);
   }
-  // The slot number of a vertex whose key words are `key`.
-  size_t index(const uint32_t* key) const {
+  // The slot number of vertex `cv` (a multiplicative hash of its key words).
+  size_t index(const ClipVertex& cv) const {
+    const unsigned char* k = key_bytes(cv);
     uint64_t h = 0;
-    for (size_t k = 0; k < kw_; ++k) h = (h ^ key[k]) * 0x9E3779B97F4A7C15ull;
+    for (size_t w = 0; w < kw_; ++w) h = (h ^ key_word(k, w)) * 0x9E3779B97F4A7C15ull;
     return bits_ > 0 ? (size_t)(h >> (64 - bits_)) : 0;
   }
-  // The key words of `cv` (its float32 bits).
-  void key_of(const ClipVertex& cv, uint32_t* key) const {
-    // Fixed sizes (a run-time length is a libc call, with the varying copies 2.5 % of the bunny's
-    // profile); the words past 4 + nv_ are never read.
-    static_assert(sizeof(cv.pos) + sizeof(cv.var) == (4 + kMaxVaryings) * sizeof(uint32_t), "key words");
-    std::memcpy(key, cv.pos, sizeof(cv.pos));
-    std::memcpy(key + 4, cv.var, sizeof(cv.var));
-  }
-  size_t index(const ClipVertex& cv) const {
-    uint32_t key[4 + kMaxVaryings];
-    key_of(cv, key);
-    return index(key);
+  unsigned char* slot_of(const ClipVertex& cv) const {
+    return reinterpret_cast<unsigned char*>(table_ + index(cv) * stride_);
   }
   // Every cache line of a slot (a slot of 144 bytes at 2 varyings spans 3 lines where it starts
   // past a line's first 32 bytes; the head, key and varyings are all read on a hit).
   void prefetch_slot(const unsigned char* slot) const {
-    const uintptr_t last = reinterpret_cast<uintptr_t>(slot) + stride_ * sizeof(uint64_t) - 1;
+    const uintptr_t last = reinterpret_cast<uintptr_t>(slot) + stride_ * kWordBytes - 1;
     for (uintptr_t line = reinterpret_cast<uintptr_t>(slot) & ~(uintptr_t)(kCacheLine - 1); line <= last;
          line += kCacheLine)
       __builtin_prefetch(reinterpret_cast<const void*>(line));
   }
   static constexpr size_t kCacheLine = 64;
-  // The key words of `cv` and its slot.
-  unsigned char* locate(const ClipVertex& cv, uint32_t* key) {
-    key_of(cv, key);
-    return reinterpret_cast<unsigned char*>(table_ + index(key) * stride_);
+
+  // The ring of slot numbers prefetch() located: the primitives ahead of the one drawn
+  // (kVertexCachePrefetchAhead, plus the one being looked up).
+  static constexpr unsigned kPrefetchRing = 4;
+  static_assert(kPrefetchRing >= kVertexCachePrefetchAhead + 1, "a prefetched triangle's entry outlives its wait");
+  struct Pending {
+    const ClipTriangle* tri = nullptr;
+    uint32_t slot[3] = {0, 0, 0};
+  };
+  // The slots of `tri` from its ring entry (which is then cleared); false when there is none.
+  bool take_prefetched(const ClipTriangle& tri, unsigned char* slot[3]) {
+    for (Pending& e : ring_)
+      if (e.tri == &tri) {
+        e.tri = nullptr;
+        for (int i = 0; i < 3; ++i) slot[i] = reinterpret_cast<unsigned char*>(table_ + e.slot[i] * stride_);
+        return true;
+      }
+    return false;
+  }
+  void forget_prefetched() {
+    for (Pending& e : ring_) e.tri = nullptr;
   }
 
-  bool vertex(const ClipVertex& cv, const uint32_t* key, unsigned char* slot, SetupVertex& out) {
-    if (shared_) return vertex_shared(cv, key, reinterpret_cast<uint64_t*>(slot), out);
+  bool vertex(const ClipVertex& cv, unsigned char* slot, SetupVertex& out) {
+    if (shared_) return vertex_shared(cv, reinterpret_cast<uint64_t*>(slot), out);
     uint32_t state;
     std::memcpy(&state, slot, sizeof(state));
-    if (filled(state) && same_key(slot, key)) {
+    if (filled(state) && same_key(slot, cv)) {
       ++hits_;
       if ((state & 3) != kAccepted) return false;
       // Field by field from the slot (a copy of the whole head to the stack, read back in other
       // widths, stalled on store forwarding: a quarter of the hit path's samples).
-      std::memcpy(&out.x, slot + offsetof(Head, x), sizeof(out.x));
-      std::memcpy(&out.y, slot + offsetof(Head, y), sizeof(out.y));
-      std::memcpy(&out.ax, slot + offsetof(Head, ax), sizeof(out.ax));
-      std::memcpy(&out.ay, slot + offsetof(Head, ay), sizeof(out.ay));
-      std::memcpy(&out.z, slot + offsetof(Head, z), sizeof(out.z));
-      std::memcpy(&out.rw, slot + offsetof(Head, rw), sizeof(out.rw));
+      read_head(slot, out);
       copy_varyings(out.vw, slot + vw_offset_);
       return true;
     }
     ++misses_;
     Head head;
-    copy_units<sizeof(uint32_t)>(slot + kKeyOffset, key, kw_);
+    copy_units<sizeof(uint32_t)>(slot + kKeyOffset, key_bytes(cv), kw_);
     const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_);
     fill(head, ok, out, slot);
     std::memcpy(slot, &head, sizeof(Head));
     return ok;
+  }
+  // The SetupVertex fields of a slot's head (`h`: the slot, or a copy of it).
+  static void read_head(const unsigned char* h, SetupVertex& out) {
+    std::memcpy(&out.x, h + offsetof(Head, x), sizeof(out.x));
+    std::memcpy(&out.y, h + offsetof(Head, y), sizeof(out.y));
+    std::memcpy(&out.ax, h + offsetof(Head, ax), sizeof(out.ax));
+    std::memcpy(&out.ay, h + offsetof(Head, ay), sizeof(out.ay));
+    std::memcpy(&out.z, h + offsetof(Head, z), sizeof(out.z));
+    std::memcpy(&out.rw, h + offsetof(Head, rw), sizeof(out.rw));
   }
 
   // The head and varyings of a slot holding accepted_vertex's answer `ok`, `out` (its key
@@ -286,29 +331,31 @@ class VertexCache {
   }
 
   // vertex() on a shared table: the slot's words are read with atomic loads between two loads of
-  // its head word (equal, with an even sequence number: a consistent copy), and written by the
+  // its head word (equal, with an even sequence number: a consistent read), and written by the
   // thread that moved the sequence number from the even value it read to odd (then even again
-  // with the new state). Others' writes are never waited for: a miss.
-  bool vertex_shared(const ClipVertex& cv, const uint32_t* key, uint64_t* slot, SetupVertex& out) {
+  // with the new state). Others' writes are never waited for: a miss. The key words are
+  // compared as they are loaded, and the rest of the slot is copied only when they are the
+  // vertex's (a whole-slot copy before the compare was 21 M instructions per bunny frame,
+  // docs/speed.md "Session 9: threads"). A slot's padding after an odd number of key words is
+  // zero (the writer's copy is zeroed first), so the key compares as table words.
+  bool vertex_shared(const ClipVertex& cv, uint64_t* slot, SetupVertex& out) {
     uint64_t copy[kMaxSlotWords];
     const uint64_t w0 = __atomic_load_n(slot, __ATOMIC_ACQUIRE);
     uint32_t state_seq[2];  // the head's first word: state, seq
     std::memcpy(state_seq, &w0, sizeof(uint64_t));
     const uint32_t state = state_seq[0], seq = state_seq[1];
     const bool idle = (seq & 1) == 0;
-    if (idle && filled(state)) {
+    if (idle && filled(state) && same_key_shared(slot, cv)) {
       copy[0] = w0;
-      for (size_t k = 1; k < stride_; ++k) copy[k] = __atomic_load_n(slot + k, __ATOMIC_RELAXED);
+      for (size_t k = 1; k < kKeyOffset / kWordBytes; ++k) copy[k] = __atomic_load_n(slot + k, __ATOMIC_RELAXED);
+      for (size_t k = vw_offset_ / kWordBytes; k < stride_; ++k) copy[k] = __atomic_load_n(slot + k, __ATOMIC_RELAXED);
       __atomic_thread_fence(__ATOMIC_ACQUIRE);
-      const unsigned char* c = reinterpret_cast<const unsigned char*>(copy);
-      if (__atomic_load_n(slot, __ATOMIC_RELAXED) == w0 &&
-          same_key(c, key)) {
+      if (__atomic_load_n(slot, __ATOMIC_RELAXED) == w0) {  // nothing written since w0: the key compare held
         ++hits_;
         if ((state & 3) != kAccepted) return false;
-        Head head;
-        std::memcpy(&head, c, sizeof(Head));
-        out.x = head.x, out.y = head.y, out.ax = head.ax, out.ay = head.ay, out.z = head.z, out.rw = head.rw;
-        std::memcpy(out.vw, c + vw_offset_, (size_t)nv_ * sizeof(FxFloat));
+        const unsigned char* c = reinterpret_cast<const unsigned char*>(copy);
+        read_head(c, out);
+        copy_varyings(out.vw, c + vw_offset_);
         return true;
       }
     }
@@ -320,9 +367,9 @@ class VertexCache {
     if (!idle || !__atomic_compare_exchange_n(slot, &expect, busy, false, __ATOMIC_ACQUIRE, __ATOMIC_RELAXED))
       return ok;  // another thread writes the slot
     __atomic_thread_fence(__ATOMIC_RELEASE);
-    std::memset(copy, 0, stride_ * sizeof(uint64_t));
+    std::memset(copy, 0, stride_ * kWordBytes);
     unsigned char* c = reinterpret_cast<unsigned char*>(copy);
-    std::memcpy(c + kKeyOffset, key, kw_ * sizeof(uint32_t));
+    std::memcpy(c + kKeyOffset, key_bytes(cv), kw_ * sizeof(uint32_t));
     Head fresh;
     fill(fresh, ok, out, c);
     fresh.seq = seq + 2;
@@ -331,7 +378,21 @@ class VertexCache {
     __atomic_store_n(slot, copy[0], __ATOMIC_RELEASE);
     return ok;
   }
-
+  // The shared slot's key words (atomic loads of table words) equal the vertex's.
+  bool same_key_shared(const uint64_t* slot, const ClipVertex& cv) const {
+    const unsigned char* c = key_bytes(cv);
+    const uint64_t* k = slot + kKeyOffset / kWordBytes;
+    const size_t pairs = kw_ / 2;
+    for (size_t j = 0; j < pairs; ++j) {
+      uint64_t v;
+      std::memcpy(&v, c + j * kWordBytes, kWordBytes);
+      if (__atomic_load_n(k + j, __ATOMIC_RELAXED) != v) return false;
+    }
+    if (kw_ % 2 == 0) return true;
+    uint64_t last = 0;  // the odd last key word, then the zero padding
+    std::memcpy(&last, c + pairs * kWordBytes, sizeof(uint32_t));
+    return __atomic_load_n(k + pairs, __ATOMIC_RELAXED) == last;
+  }
   const Config& cfg_;
   const DrawState& st_;
   GuardBand gb_;
@@ -345,6 +406,8 @@ class VertexCache {
   uint64_t* table_ = nullptr;
   uint32_t epoch_ = 0;
   bool shared_ = false;
+  Pending ring_[kPrefetchRing];
+  unsigned ring_next_ = 0;
   ClipVtx scratch_;  // accepted_vertex's working vertex
 };
 
