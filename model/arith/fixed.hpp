@@ -64,6 +64,11 @@ struct FxFormat {
 
 // ---- bit utilities -------------------------------------------------------------------------
 
+// The int64 range proofs' bound (docs/speed.md "Session 9: per triangle"): a value whose msb
+// index is at most kInt64ShiftMax is below 2^63 (fits int64, and uint64 with a spare bit for a
+// doubling), and shift_round_right<int64_t> takes right shifts up to it (64 − 2).
+inline constexpr int kInt64ShiftMax = 62;
+
 // Number of leading zeros of a 64-bit value; clz64(0) == 64.
 inline int clz64(uint64_t x) { return x ? __builtin_clzll(x) : 64; }
 
@@ -187,7 +192,7 @@ namespace detail {
 // Widest destination the int64 fast path handles (its max code must fit int64_t).
 inline constexpr int kFastMaxWidth = 63;
 // Largest right shift the int64 fast path handles (shift_round_right needs ≤ bits − 2).
-inline constexpr int kFastMaxShift = 62;
+inline constexpr int kFastMaxShift = kInt64ShiftMax;
 
 // convert() for an int64 x, 0 ≤ shift ≤ kFastMaxShift, dst.width ≤ kFastMaxWidth: the same
 // rounding and overflow as the i128 path, in 64-bit arithmetic (the common case: 3× faster).

@@ -114,10 +114,10 @@ bool attr_quotient64(const FxFloat& n, const FxFloat& w, int bits, FxFloat* out)
   const int s = bits + 1 + msb64(w.sig) - msb64(n.sig);
   uint64_t num = n.sig, den = w.sig;
   if (s >= 0) {
-    if (msb64(n.sig) + s > 62) return false;
+    if (msb64(n.sig) + s > kInt64ShiftMax) return false;
     num <<= s;
   } else {
-    if (msb64(w.sig) - s > 62) return false;
+    if (msb64(w.sig) - s > kInt64ShiftMax) return false;
     den <<= -s;
   }
   const uint64_t q = num / den, r = num % den;
@@ -138,9 +138,10 @@ bool attr_quotient64(const FxFloat& n, const FxFloat& w, int bits, FxFloat* out)
 void check_attr_widths(const Config& cfg) {
   const RasterConfig& r = cfg.raster;
   if (!attr_separate(r)) return;  // attr_subpixel_bits ≤ subpixel_bits: planes on the snapped triangle
-  if (attr_position_bits(r) > 62)
+  if (attr_position_bits(r) > kInt64ShiftMax)
     throw ConfigError("raster: fields 'window_int_bits' + 'attr_subpixel_bits' = " +
-                      std::to_string(attr_position_bits(r)) + " bits: attribute positions are held in int64 (<= 62)");
+                      std::to_string(attr_position_bits(r)) + " bits: attribute positions are held in int64 (<= " +
+                      std::to_string(kInt64ShiftMax) + ")");
   if (r.attr_coord_bits < r.window_int_bits + 3)
     throw ConfigError("raster: field 'attr_coord_bits' (" + std::to_string(r.attr_coord_bits) +
                       ") must be >= window_int_bits + 3 so that every triangle keeps a fraction bit");
@@ -160,7 +161,7 @@ int64_t attr_window(const FxFloat& c, const FxFloat& w, int64_t size, int64_t or
   const int A = rc.attr_subpixel_bits;
   int64_t C, v;
   uint64_t N;
-  if (size > 0 && A >= 1 && A - 1 < kAttrFast64Bits && attr_position_bits(rc) <= 62 &&
+  if (size > 0 && A >= 1 && A - 1 < kAttrFast64Bits && attr_position_bits(rc) <= kInt64ShiftMax &&
       !__builtin_mul_overflow(size + 2 * origin, (int64_t)1 << (A - 1), &C) &&
       !__builtin_mul_overflow(c.sig, (uint64_t)size, &N) &&
       rne_quotient_plus64(c.neg, N, c.exp - w.exp + A - 1, w.sig, C, &v)) {
@@ -320,10 +321,27 @@ AttrEdgeTerms attr_edge_terms(const AttrSetup& s) {
   return t;
 }
 
+namespace {
+// attr_edge_terms64 with 2A' as the int64 it is computed in (attr_plane_setup: an i128 written
+// through a pointer as two words and read back by one 16-byte load stalled on store forwarding,
+// a sixth of attr_plane_setup's samples; docs/speed.md "Session 10: per triangle").
+AttrTerms64 attr_edge_terms64_int(const Config& cfg, const SetupTriangle& tri, const TriSetup& t, AttrEdgeTerms& out,
+                                  int64_t* area2);
+}  // namespace
+
 AttrTerms64 attr_edge_terms64(const Config& cfg, const SetupTriangle& tri, const TriSetup& t, AttrEdgeTerms& out,
                               i128* area2) {
+  int64_t a = 0;
+  const AttrTerms64 r = attr_edge_terms64_int(cfg, tri, t, out, &a);
+  if (r == AttrTerms64::Done) *area2 = a;
+  return r;
+}
+
+namespace {
+AttrTerms64 attr_edge_terms64_int(const Config& cfg, const SetupTriangle& tri, const TriSetup& t, AttrEdgeTerms& out,
+                                  int64_t* area2) {
   const RasterConfig& rc = cfg.raster;
-  if (attr_position_bits(rc) > 62) return AttrTerms64::Wide;  // check_attr_widths refuses it
+  if (attr_position_bits(rc) > kInt64ShiftMax) return AttrTerms64::Wide;  // check_attr_widths refuses it
   const int A = rc.attr_subpixel_bits;
   // attr_setup's M. No overflow: positions and i·2^A (|i| ≤ 2^(window_int_bits − 1)) are below
   // 2^(attr_position_bits − 1) ≤ 2^61, so every difference is below 2^62.
@@ -379,6 +397,7 @@ AttrTerms64 attr_edge_terms64(const Config& cfg, const SetupTriangle& tri, const
   *area2 = c[0];
   return AttrTerms64::Done;
 }
+}  // namespace
 
 Plane attr_plane(const AttrEdgeTerms& t, const int64_t q[3]) {
   Plane p;
@@ -429,8 +448,9 @@ bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangl
   // The edge terms once for every plane of the triangle: in 64-bit words where they fit.
   AttrEdgeTerms t{AttrEdgeTerms::Unset{}};  // Done writes every member; Wide assigns t whole
   i128 area2 = 0;
-  switch (attr_edge_terms64(cfg, tri, eq.edges, t, &area2)) {
-    case AttrTerms64::Done: break;
+  int64_t area64 = 0;
+  switch (attr_edge_terms64_int(cfg, tri, eq.edges, t, &area64)) {
+    case AttrTerms64::Done: area2 = area64; break;
     case AttrTerms64::ZeroArea: return false;
     case AttrTerms64::Wide: {
       const AttrSetup a = attr_setup(cfg, tri, eq.edges);

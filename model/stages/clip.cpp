@@ -135,6 +135,9 @@ int plane_side_u128(const PlaneEq& pl, const ClipVtx& v) {
 
 uint32_t outcode(const GuardBand& gb, const ClipVtx& v) {
   uint32_t oc = 0;
+  // Unrolled: each plane's equation a constant pattern, not plane_eq's jump table per plane
+  // (docs/speed.md "Session 10: per triangle").
+#pragma GCC unroll 8
   for (int p = 0; p < kNumClipPlanes; ++p)
     if (plane_side(plane_eq(gb, (ClipPlane)p), v) < 0) oc |= 1u << p;
   return oc;

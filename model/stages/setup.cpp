@@ -41,7 +41,10 @@ SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const SetupT
     y[k] = v.y * ((int64_t)1 << up);
   }
   // Edge k from v_{k+1} to v_{k+2}. Exact: coefficients < 2^cb, products < 2^(2cb) (int64).
-  EdgeEq e[3];
+  // Built in `out` itself (a local array copied into it at the end was read back by 16-byte
+  // loads from 8-byte stores, a store-forwarding stall: a fifth of this function's samples,
+  // docs/speed.md "Session 10: per triangle"); nothing reads `out` when the outcome is not Ok.
+  EdgeEq* const e = out.e;
   for (int k = 0; k < 3; ++k) {
     const int a = (k + 1) % 3, b = (k + 2) % 3;
     e[k].a = y[a] - y[b];
@@ -56,11 +59,12 @@ SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const SetupT
   if ((st.cull == CullMode::Back && !front) || (st.cull == CullMode::Front && front))
     return SetupOutcome::CulledBackface;
   if (!ccw) {  // normalise the winding: −E of a → b is E of b → a (exact)
-    for (EdgeEq& q : e) q = EdgeEq{-q.a, -q.b, -q.c, 0};
+    for (int k = 0; k < 3; ++k) e[k].a = -e[k].a, e[k].b = -e[k].b, e[k].c = -e[k].c;
     area2 = -area2;
   }
   // Top-left rule (see the header): the gradient (a, b) points inside.
-  for (EdgeEq& q : e) {
+  for (int k = 0; k < 3; ++k) {
+    EdgeEq& q = e[k];
     const bool left = q.a > 0;
     const bool top = q.a == 0 && q.b < 0;
     q.bias = (left || top) ? 0 : -1;
@@ -82,7 +86,6 @@ SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const SetupT
   const int64_t by0 = std::max<int64_t>(ceil_shift(ymin - h, g), dr.y0);
   const int64_t by1 = std::min<int64_t>(floor_shift(ymax - h, g), dr.y1);
   if (bx0 > bx1 || by0 > by1) return SetupOutcome::CulledNoSamples;
-  for (int k = 0; k < 3; ++k) out.e[k] = e[k];
   out.area2 = area2;
   out.front = front;
   out.g = g;

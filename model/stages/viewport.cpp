@@ -63,11 +63,11 @@ i128 round_scaled_sum(i128 m, int e, i128 c, int sh, bool* range) {
 }
 
 bool round_scaled_sum64(int64_t m, int e, int64_t c, int sh, int64_t* out) {
-  // Range: |m| < 2^kSnapFast64Bits, |c| < 2^(kSnapFast64Bits − 1), sh + 2 ≤ 62, and for e ≥ 0
+  // Range: |m| < 2^kSnapFast64Bits, |c| < 2^(kSnapFast64Bits − 1), sh + 2 ≤ kInt64ShiftMax, and for e ≥ 0
   // |m·2^e| < 2^(kSnapFast64Bits − 1) (so m·2^e + c fits), for e < 0 a shift −e ≤ kSnapFast64Bits
   // (so q, r and (q + c)·4 fit: |q + c| < 2^kSnapFast64Bits). Then the i128 path's steps in int64.
   constexpr int64_t kM = (int64_t)1 << kSnapFast64Bits, kC = (int64_t)1 << (kSnapFast64Bits - 1);
-  if (m >= kM || m <= -kM || c >= kC || c <= -kC || sh < 0 || sh + 2 > 62) return false;
+  if (m >= kM || m <= -kM || c >= kC || c <= -kC || sh < 0 || sh + 2 > kInt64ShiftMax) return false;
   const auto rne = [](int64_t x, int s) {
     return s == 0 ? x : detail::shift_round_right<int64_t, uint64_t>(x, s, Round::HalfEven);
   };
@@ -111,7 +111,7 @@ int64_t snap_window(const FxProd& n, int64_t size, int64_t origin, const RasterC
   const int s = rc.subpixel_bits;
   uint64_t mag;
   int64_t c, code;
-  if ((n.sig >> 64) == 0 && size > 0 && s >= 0 && s < 62 &&
+  if ((n.sig >> 64) == 0 && size > 0 && s >= 0 && s < kInt64ShiftMax &&
       !__builtin_mul_overflow((uint64_t)n.sig, (uint64_t)size, &mag) && mag < ((uint64_t)1 << kSnapFast64Bits) &&
       !__builtin_mul_overflow(size + 2 * origin, (int64_t)1 << s, &c) &&
       round_scaled_sum64(n.neg ? -(int64_t)mag : (int64_t)mag, n.exp + s, c, 1, &code))

@@ -230,7 +230,7 @@ class VertexCache {
   // n units of kUnit bytes: a fixed-size copy (inline moves) for n ≤ 8, where a std::memcpy of a
   // run-time length is a libc call (the key and varying copies: 2.5 % of the bunny's profile).
   template <size_t kUnit>
-  static void copy_units(void* dst, const void* src, size_t n) {
+  __attribute__((always_inline)) static void copy_units(void* dst, const void* src, size_t n) {
     switch (n) {
       case 0: break;
       case 1: std::memcpy(dst, src, 1 * kUnit); break;
@@ -246,6 +246,9 @@ class VertexCache {
   }
   void copy_varyings(FxFloat* vw, const unsigned char* from) const {
     copy_units<sizeof(FxFloat)>(vw, from, (size_t)nv_);
+  }
+  void copy_varyings_to(unsigned char* to, const FxFloat* vw) const {
+    copy_units<sizeof(FxFloat)>(to, vw, (size_t)nv_);
   }
   // The slot number of vertex `cv` (a multiplicative hash of its key words).
   size_t index(const ClipVertex& cv) const {
@@ -303,11 +306,21 @@ class VertexCache {
       return true;
     }
     ++misses_;
-    Head head;
     copy_units<sizeof(uint32_t)>(slot + kKeyOffset, key_bytes(cv), kw_);
     const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_);
-    fill(head, ok, out, slot);
-    std::memcpy(slot, &head, sizeof(Head));
+    // The head field by field into the slot (a Head built on the stack and copied whole stalled
+    // on store forwarding); seq stays 0 in a table of one cache.
+    const uint32_t written = epoch_ << 2 | (ok ? kAccepted : kNotAccepted);
+    std::memcpy(slot + offsetof(Head, state), &written, sizeof(written));
+    if (ok) {
+      std::memcpy(slot + offsetof(Head, x), &out.x, sizeof(out.x));
+      std::memcpy(slot + offsetof(Head, y), &out.y, sizeof(out.y));
+      std::memcpy(slot + offsetof(Head, ax), &out.ax, sizeof(out.ax));
+      std::memcpy(slot + offsetof(Head, ay), &out.ay, sizeof(out.ay));
+      std::memcpy(slot + offsetof(Head, z), &out.z, sizeof(out.z));
+      std::memcpy(slot + offsetof(Head, rw), &out.rw, sizeof(out.rw));
+      copy_varyings_to(slot + vw_offset_, out.vw);
+    }
     return ok;
   }
   // The SetupVertex fields of a slot's head (`h`: the slot, or a copy of it).

@@ -370,6 +370,57 @@ TEST(Shortcut, VertexCacheWithCollidingSlotsAnswersOnlyForTheVertexItKeeps) {
   EXPECT_GT(cache.hits(), 1000u);
 }
 
+// The slot numbers VertexCache::prefetch keeps for triangle() (docs/speed.md "Session 10: per
+// triangle") are hints. Prefetched kVertexCachePrefetchAhead primitives ahead as draw_all does,
+// the cache gives every answer and counts every hit and miss as a cache that is never
+// prefetched; and when the prefetched triangle object is rewritten before its lookup (the kept
+// slots are then another triangle's), every answer is still the full chain's for the triangle
+// looked up. Small tables (2^6 slots), so that slots are shared and replaced.
+TEST(Shortcut, VertexCachePrefetchedSlotsAreOnlyHints) {
+  std::mt19937_64 rng(0x5c05);
+  const Config cfg;
+  for (int trial = 0; trial < 4; ++trial) {
+    const DrawState st = state(200, 150, 0, 0, trial);
+    const std::vector<ClipTriangle> tris = grid_mesh(rng, 40, st.num_varyings, 0.8);
+    VertexCache plain(cfg, st, 6, 0), ahead(cfg, st, 6, 0), stale(cfg, st, 6, 0);
+    FullPathTap ft;
+    GeometryChain<FullPathTap> full(cfg, st, ft);
+    uint64_t answered = 0, stale_answered = 0;
+    ClipTriangle obj;
+    for (size_t p = 0; p < tris.size(); ++p) {
+      if (p + kVertexCachePrefetchAhead < tris.size()) ahead.prefetch(tris[p + kVertexCachePrefetchAhead]);
+      SetupTriangle a, b;
+      const bool ra = plain.triangle(tris[p], (uint32_t)p, a), rb = ahead.triangle(tris[p], (uint32_t)p, b);
+      ASSERT_EQ(ra, rb) << "primitive " << p;
+      if (ra) {
+        ++answered;
+        ASSERT_TRUE(same_setup(a, b)) << "primitive " << p;
+      }
+      // The stale ring entry: prefetched as one triangle, looked up as another.
+      obj = tris[(p * 7919 + 13) % tris.size()];
+      stale.prefetch(obj);
+      obj = tris[p];
+      SetupTriangle c;
+      if (!stale.triangle(obj, (uint32_t)p, c)) continue;
+      ++stale_answered;
+      InputTriangle in;
+      in.prim = (uint32_t)p;
+      in.tri = tris[p];
+      std::vector<SetupTriangle> want;
+      RasterStats s;
+      ASSERT_EQ(full.run(in, want, s), GeomOutcome::Emitted) << "primitive " << p;
+      ASSERT_EQ(want.size(), 1u);
+      ASSERT_TRUE(same_setup(c, want[0])) << "primitive " << p;
+    }
+    EXPECT_EQ(plain.hits(), ahead.hits());
+    EXPECT_EQ(plain.misses(), ahead.misses());
+    EXPECT_GT(plain.hits(), 1000u);
+    EXPECT_GT(plain.misses(), 1000u);
+    EXPECT_GT(answered, 500u);
+    EXPECT_GT(stale_answered, 100u);
+  }
+}
+
 namespace {
 
 // What the stages do when nothing needs a varying: setup's planes, the samples' N and D, the
