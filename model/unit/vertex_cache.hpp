@@ -29,11 +29,14 @@ namespace fxr {
 
 // Size of the direct-mapped cache: the most slots, up to 2^kVertexCacheMaxSlotBits, whose
 // arrays fit kVertexCacheBytes (a slot: the SetupVertex without varyings, 4 + nv key words, nv
-// varyings; 144 bytes at 2 varyings: 2^14 slots). Measured on the bunny (docs/speed.md
-// "Shortcuts"): 2^10 / 2^12 / 2^14 slots answer 51 / 64 / 75 % of the default scene's vertex
-// lookups; the bunny's stream rate at 2^12 … 2^16 slots is within the noise.
-inline constexpr int kVertexCacheMaxSlotBits = 14;
-inline constexpr size_t kVertexCacheBytes = size_t{4} << 20;
+// varyings; 88 bytes without varyings, 144 bytes at 2: 2^16 slots, 5.8 / 9.4 MB). Measured on
+// the bunny (docs/speed.md "Shortcuts", "Session 8: the bunny's per-triangle cost"): 2^10 /
+// 2^12 / 2^14 / 2^16 / 2^17 slots answer 51 / 64 / 75 / 81 / 82 % of the default scene's vertex
+// lookups. With the slots prefetched ahead (session 9) the larger table pays: same-run A/B,
+// bunny stream v0 / v2 at 2^14 (4 MB) 17.75 / 9.92, 2^16 (16 MB) 18.45 / 10.32, 2^17 (32 MB)
+// 18.94 / 10.09 M fragments/s (docs/speed.md "Session 10: per triangle").
+inline constexpr int kVertexCacheMaxSlotBits = 16;
+inline constexpr size_t kVertexCacheBytes = size_t{16} << 20;
 // A chain allocates its cache only after this many primitives (fxr::geometry() sets a chain up
 // per primitive; a few primitives gain nothing from it).
 inline constexpr uint64_t kVertexCacheMinPrims = 64;
