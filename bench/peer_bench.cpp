@@ -182,8 +182,12 @@ void BM_ModelThreads(benchmark::State& state) {
 // holds its varyings as the compact record's 8-byte words (model/unit/fragment_store.hpp: the
 // significand and exponent·2 + sign); the fused span path hands it a span's records at once
 // (emit_span: a copy of each record's varying words), the staged path one Fragment at a time.
+// Each span prefetches the pixels of the two rows above its start for writing: a small
+// triangle's next spans start there, and the image (16 MB at 2 varyings) is written in mesh
+// order, so without it most spans' writes missed the cache (docs/speed.md "Session 10: the span
+// and the sink": bunny v2 streaming +13 %; a tiled image gained less).
 struct ImageSink : FragmentSink {
-  int width = 0, nv = 0;
+  int width = 0, height = 0, nv = 0;
   std::vector<uint8_t> var;  // nv · kFragmentVaryingBytes per pixel
   uint8_t* pixel(int x, int y) {
     return &var[((size_t)y * (size_t)width + (size_t)x) * (size_t)nv * kFragmentVaryingBytes];
@@ -198,13 +202,17 @@ struct ImageSink : FragmentSink {
     if (nv == 0) return;
     const size_t stride = b.stride(), bytes = (size_t)nv * kFragmentVaryingBytes;
     const uint8_t* r = b.data;
-    uint8_t* row = pixel(0, b.y(0));
+    const int y = b.y(0);
+    uint8_t* row = pixel(0, y);
     for (size_t i = 0; i < b.count; ++i, r += stride) {
       uint8_t* px = row + (size_t)fragment_word(r, 1) * bytes;
       for (int k = 0; k < nv; ++k)  // word by word: fixed-size copies, no memcpy call
         std::memcpy(px + (size_t)k * kFragmentVaryingBytes, r + kFragmentHeaderBytes + (size_t)k * kFragmentVaryingBytes,
                     kFragmentVaryingBytes);
     }
+    const size_t x = (size_t)b.x(0), row_bytes = (size_t)width * bytes;
+    for (int k = 1; k <= 2; ++k)  // within the image (the address stays inside the buffer)
+      if (y + k < height) __builtin_prefetch(row + k * row_bytes + x * bytes, 1);
   }
 };
 
@@ -213,8 +221,9 @@ void BM_ModelStream(benchmark::State& state) {
   const Config& cfg = bench_config();
   ImageSink sink;
   sink.width = s.st.viewport_x + s.st.viewport_w;
+  sink.height = s.st.viewport_y + s.st.viewport_h;
   sink.nv = s.st.num_varyings;
-  sink.var.assign((size_t)sink.width * (size_t)(s.st.viewport_y + s.st.viewport_h) * (size_t)sink.nv *
+  sink.var.assign((size_t)sink.width * (size_t)sink.height * (size_t)sink.nv *
                       kFragmentVaryingBytes, 0);
   FrameOutput f;
   NoTaps taps;

@@ -136,11 +136,14 @@ class FusedSpan {
   }
 
   // Contract: the spans that follow (run) belong to triangle `t` until the next begin(). run()
-  // calls it itself when handed another TriangleEquations object; a caller that rewrites one
-  // object with the next triangle (SetupStage's output) must call it per triangle, as
-  // FragmentChain::run / rows do. Cheap: the cursor is set up at the first span.
+  // calls it itself when handed another triangle: another object, or the same object with
+  // another serial (SetupStage rewrites one record per triangle and numbers each,
+  // TriangleEquations::serial). A caller that edits equations by hand (serial 0, or one kept)
+  // must call it per triangle. FragmentChain::run / rows call it per triangle for the depth
+  // prefetch below. Cheap: the cursor is set up at the first span.
   void begin(const TriangleEquations& t) {
     tri_ = &t;
+    serial_ = t.serial;
     started_ = false;
     fits_ = fits(t);
     if (test_) {  // the depth words of the candidate rectangle's first rows: read by the spans soon
@@ -156,11 +159,15 @@ class FusedSpan {
       }
     }
   }
-  // fits(t) for the triangle of the last begin(t) (begins it when `t` is another object).
+  // True when `t` is the triangle of the last begin(): the same object with the same serial.
+  bool begun(const TriangleEquations& t) const { return &t == tri_ && t.serial == serial_; }
+  // fits(t) for the triangle of the last begin(t) (begins it when `t` is another triangle).
   bool fits_begun(const TriangleEquations& t) {
-    if (&t != tri_) begin(t);
+    if (!begun(t)) begin(t);
     return fits_;
   }
+  // fits(t) of the last begin(t), for a caller that calls begin() per triangle itself.
+  bool fits_of_begun() const { return fits_; }
 
   // Contract: stages 7–9 on span `sp` of `t` (fits(t); begin(t) called since `t` last changed,
   // see begin()): the same passing pixels, depth-buffer writes and fragment values (x, y, depth,
@@ -173,8 +180,13 @@ class FusedSpan {
   // start (a plane by Δy·dy + Δx·dx; the sums keep their binade and normaliser unless they left
   // it; the depth quotient by DepthCursor, int64_t where its bound holds).
   uint64_t run(const TriangleEquations& t, const Span& sp, uint8_t* out) {
+    if (!begun(t)) begin(t);
+    return run_begun(t, sp, out);
+  }
+  // The same for a caller that calls begin(t) per triangle itself (FragmentChain::run / rows):
+  // no identity check per span.
+  uint64_t run_begun(const TriangleEquations& t, const Span& sp, uint8_t* out) {
     ++counts_.spans;
-    if (&t != tri_) begin(t);
     const TriSetup& e = t.edges;
     // Every span of traversal lies in the candidate rectangle; what the cursor proves holds there.
     const bool inside = sp.x0 >= e.x0 && sp.x1 <= e.x1 && sp.y >= e.y0 && sp.y <= e.y1;
@@ -492,8 +504,7 @@ class FusedSpan {
               const DivSig q = div_sig_recip64_frac_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
               // put_fragment_var's words: the exponent word (exp << 1 | neg) from its segment
               // constant hw[m] = eb[m] << 1 | neg plus twice the pixel's part (mod 2^32).
-              const uint32_t wv[2] = {(uint32_t)q.sig, hw[m] + 2u * (uint32_t)(q.exp_adj + cn - cd)};
-              std::memcpy(rec + kFragmentHeaderBytes + (size_t)m * kFragmentVaryingBytes, wv, sizeof wv);
+              put_fragment_var_words(rec, m, (uint32_t)q.sig, hw[m] + 2u * (uint32_t)(q.exp_adj + cn - cd));
             }
             rec += stride;
           }
@@ -555,6 +566,7 @@ class FusedSpan {
   Sum num_[kMaxVaryings];
   // The span-start cursor of the current triangle (begin / run).
   const TriangleEquations* tri_ = nullptr;
+  uint64_t serial_ = 0;  // tri_->serial at begin()
   bool started_ = false, fits_ = false, z_cursor_ = false;
   int32_t cx_ = 0, cy_ = 0;            // the last span start
   u128 val_[1 + kMaxVaryings] = {};   // D, N_m at (cx_, cy_) (two's complement)

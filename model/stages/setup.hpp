@@ -25,6 +25,7 @@
 // coordinates makes left and bottom edges inclusive instead (docs/references.md#peer-fill-rule): mirror y to compare.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 
 #include "model/config/config.hpp"
@@ -290,6 +291,11 @@ struct TriangleEquations {
   TriSetup edges;
   DepthSetup depth;
   InterpSetup interp;  // interp.n = 0 when the chain computes no varyings
+  // Not a field of the record (not visited, no hardware bits): SetupStage numbers each triangle
+  // it emits, unique in the process (0: built by hand), so that a consumer keeping per-triangle
+  // state (FusedSpan's span-start cursor, model/stages/interp_span.hpp) tells a rewritten
+  // record from the triangle it began.
+  uint64_t serial = 0;
 
   template <class V>
   void visit(V& v, const RecordShape& s) {
@@ -340,6 +346,12 @@ inline constexpr int kSetupEdgeStages = 3;
 inline constexpr int kSetupAttrStages = 4;
 inline constexpr int kSetupPlaneStages = 2;
 
+// The first serial of a SetupStage's block of 2^40 (TriangleEquations::serial), minus one.
+inline uint64_t setup_serial_block() {
+  static std::atomic<uint64_t> next{0};
+  return (next.fetch_add(1, std::memory_order_relaxed) + 1) << 40;
+}
+
 class SetupStage {
  public:
   static constexpr const char* kName = "setup";
@@ -356,6 +368,7 @@ class SetupStage {
     const SetupOutcome o = setup_triangle(cfg_, st_, in, out_.edges);
     if (o != SetupOutcome::Ok) return o;
     out_.prim = in.prim;
+    out_.serial = ++serial_;
     if (!attr_planes(cfg_.raster) || !attr_plane_setup(cfg_, st_, in, varyings_, out_)) {
       out_.depth = depth_setup(cfg_, in, out_.edges);
       if (varyings_) interp_setup(cfg_, st_, in, out_.edges, out_.interp);
@@ -373,6 +386,7 @@ class SetupStage {
   const DrawState& st_;
   bool varyings_;
   TriangleEquations out_;
+  uint64_t serial_ = setup_serial_block();  // the last serial emitted
 };
 
 }  // namespace fxr

@@ -47,31 +47,37 @@ class FragmentSink {
       emit(f);
     }
   }
-  // Optional, for a sink keeping records as they are: room for `max_records` records of
-  // `num_varyings` varyings in its own memory (nullptr: not offered). The fused chain then writes
-  // a span's passing fragments there and calls span_done(count) — the same fragments as
-  // emit_span, without the copy.
-  virtual uint8_t* span_space(size_t /*max_records*/, int /*num_varyings*/) { return nullptr; }
-  virtual void span_done(size_t /*count*/) {}
   // Called once by each chain that will emit into the sink (triangles, then line segments, whose
   // draw state may have more varyings), before its first emit.
   virtual void draw_state(const DrawState&) {}
+
+  // A sink keeping the records as they are (KeepFragments) names its store: where its
+  // num_varyings is the chain's, the fused chain appends each span's passing fragments to it
+  // directly (FragmentStore::append_space / append_commit) — the same fragments as emit_span,
+  // without the copy and without a virtual call per span (docs/speed.md "Session 10: the span
+  // and the sink"). nullptr (the default): every span goes to emit_span.
+  FragmentStore* record_store() const { return store_; }
+
+ protected:
+  void set_record_store(FragmentStore* s) { store_ = s; }
+
+ private:
+  FragmentStore* store_ = nullptr;
 };
 
 // Holds every fragment: appends them to a compact store (FrameOutput::fragments in
 // run_raster_unit), widened to the varyings of every draw it receives.
 class KeepFragments final : public FragmentSink {
  public:
-  explicit KeepFragments(FragmentStore& out) : out_(&out) {}
+  explicit KeepFragments(FragmentStore& out) : out_(&out) { set_record_store(out_); }
   // Appends to `out` from now on (the threaded driver's per-step stores, model/unit/threads.cpp).
-  void retarget(FragmentStore& out) { out_ = &out; }
-  void emit(const Fragment& f) override { out_->push_back(f); }
-  void emit_span(const FragmentRecords& b) override { out_->append(b); }  // one copy
-  // The store's own memory when the shapes agree (no copy; else emit_span widens each record).
-  uint8_t* span_space(size_t max_records, int num_varyings) override {
-    return num_varyings == out_->num_varyings() ? out_->append_space(max_records) : nullptr;
+  void retarget(FragmentStore& out) {
+    out_ = &out;
+    set_record_store(out_);
   }
-  void span_done(size_t count) override { out_->append_commit(count); }
+  void emit(const Fragment& f) override { out_->push_back(f); }
+  // A wider store (a later draw with more varyings): emit_span widens each record, one copy.
+  void emit_span(const FragmentRecords& b) override { out_->append(b); }
   void draw_state(const DrawState& st) override { out_->widen(st.num_varyings); }
 
  private:

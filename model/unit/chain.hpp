@@ -220,7 +220,8 @@ class FragmentChain {
     });
   }
 
-  // Stages 7–10 on one span of `eq`.
+ private:
+  // Stages 7–10 on one span of `eq` (from run() or rows(), which began eq).
   void span(const TriangleEquations& eq, const Span& sp) {
     taps_.template out<TraverseStage>(sp);
     stats_.fragments_generated += (uint64_t)(sp.x1 - sp.x0 + 1);
@@ -228,22 +229,26 @@ class FragmentChain {
       stats_.fragments_depth_pass += (uint64_t)(sp.x1 - sp.x0 + 1);
       return;
     }
-    if (use_fused_ && fused_.fits_begun(eq)) {  // no tap: stages 7–9 in one loop (model/stages/interp_span.hpp)
+    // No tap: stages 7–9 in one loop (model/stages/interp_span.hpp); run() and rows() called
+    // fused_.begin(eq) for this triangle.
+    if (use_fused_ && fused_.fits_of_begun()) {
       const uint64_t n = (uint64_t)(sp.x1 - sp.x0 + 1);
-      uint8_t* rec = nullptr;
-      bool lent = false;
-      if (sink_) {  // the span's passing fragments as records: into the sink's memory, or to it in one call
-        rec = sink_->span_space((size_t)n, fused_.num_varyings());
-        lent = rec != nullptr;
-        if (!lent) {
-          const size_t need = (size_t)n * fragment_record_bytes(fused_.num_varyings());
-          if (records_.size() < need) records_.resize(need);
-          rec = records_.data();
-        }
+      const int nv = fused_.num_varyings();
+      uint64_t pass;
+      // The span's passing fragments as records: none without a sink; into the sink's store
+      // (non-virtual, FragmentSink::record_store); else to the sink in one call.
+      FragmentStore* store = sink_ ? sink_->record_store() : nullptr;
+      if (!sink_) {
+        pass = fused_.run_begun(eq, sp, nullptr);
+      } else if (store && store->num_varyings() == nv) {
+        pass = fused_.run_begun(eq, sp, store->append_space((size_t)n));
+        store->append_commit((size_t)pass);
+      } else {
+        const size_t need = (size_t)n * fragment_record_bytes(nv);
+        if (records_.size() < need) records_.resize(need);
+        pass = fused_.run_begun(eq, sp, records_.data());
+        if (pass) sink_->emit_span(FragmentRecords{records_.data(), (size_t)pass, nv});
       }
-      const uint64_t pass = fused_.run(eq, sp, rec);
-      if (lent) sink_->span_done((size_t)pass);
-      else if (sink_ && pass) sink_->emit_span(FragmentRecords{rec, (size_t)pass, fused_.num_varyings()});
       stats_.fragments_depth_pass += pass;
       stats_.fragments_depth_fail += n - pass;
       return;
@@ -266,7 +271,6 @@ class FragmentChain {
     });
   }
 
- private:
   Taps& taps_;
   RasterStats& stats_;
   FragmentSink* sink_;

@@ -50,9 +50,14 @@ inline void put_fragment_header(uint8_t* rec, uint32_t prim, int32_t x, int32_t 
   const uint32_t h[kFragmentHeaderWords] = {prim, (uint32_t)x, (uint32_t)y, depth};
   std::memcpy(rec, h, sizeof h);
 }
-inline void put_fragment_var(uint8_t* rec, int k, uint64_t sig, int exp, bool neg) {
-  const uint32_t w[2] = {(uint32_t)sig, ((uint32_t)exp << 1) | (uint32_t)neg};
+// Varying k as its two words: the significand and exp·2 + sign (the one writer of a varying's
+// place in the record; the fused span's word segments assemble the second word themselves).
+inline void put_fragment_var_words(uint8_t* rec, int k, uint32_t sig_word, uint32_t exp_sign_word) {
+  const uint32_t w[2] = {sig_word, exp_sign_word};
   std::memcpy(rec + kFragmentHeaderBytes + (size_t)k * kFragmentVaryingBytes, w, sizeof w);
+}
+inline void put_fragment_var(uint8_t* rec, int k, uint64_t sig, int exp, bool neg) {
+  put_fragment_var_words(rec, k, (uint32_t)sig, ((uint32_t)exp << 1) | (uint32_t)neg);
 }
 inline uint32_t fragment_word(const uint8_t* rec, int w) {
   uint32_t v;

@@ -106,8 +106,10 @@ std::vector<ClipTriangle> grazing_plane(int nv, float w_far) {
 // emitted fragment and both buffers compared. Returns the fused path's counts.
 // scramble: each triangle's spans in a shuffled order, some repeated, some cut to a part (the
 // span-start cursor then moves left, right, down and by several rows, and to the same start).
+// call_begin false: FusedSpan::begin is never called; run() must tell each triangle setup
+// writes into its one record from the last by the record's serial.
 FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
-                          const std::string& what, bool scramble = false) {
+                          const std::string& what, bool scramble = false, bool call_begin = true) {
   const size_t words = (size_t)(st.viewport_w) * (size_t)st.viewport_h;
   std::vector<uint32_t> buf_staged(words, (1u << cfg.raster.depth_bits()) - 1), buf_fused = buf_staged,
                                                                                 buf_u128 = buf_staged;
@@ -154,8 +156,10 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
     geometry(cfg, st, tris[p], (uint32_t)p, pieces, gs);
     for (const SetupTriangle& tri : pieces)
       setup.step(tri, [&](const TriangleEquations& eq) {
-        fused.begin(eq);  // setup rewrites one record per triangle
-        fused_u128.begin(eq);
+        if (call_begin) {  // setup rewrites one record per triangle
+          fused.begin(eq);
+          fused_u128.begin(eq);
+        }
         auto check = [&](const Span& sp) {
           std::vector<Fragment> want, got;
           uint64_t pass_staged = 0;
@@ -670,6 +674,39 @@ TEST(FusedSpan, SpansInAnyOrderWithinATriangleEqualTheStagedPath) {
   EXPECT_GT(total.sums_fixed, 100u);
   EXPECT_GT(total.segments, total.spans);
   EXPECT_GT(total.sign_changes, 0u);
+}
+
+TEST(FusedSpan, ARewrittenTriangleRecordStartsItsCursorWithoutBegin) {
+  // SetupStage writes every triangle into one TriangleEquations object. Without begin() per
+  // triangle the span-start cursor used to move from the last triangle's state (the same object
+  // address); run() now compares the record's serial too. Every fragment and buffer word as the
+  // staged path, each triangle's first span counted as a cursor start.
+  for (int nv : {0, 1, 2}) {
+    const DrawState st = viewport_state(nv);
+    const std::string what = "nv " + std::to_string(nv) + " without begin";
+    const std::vector<ClipTriangle> tris = small_tris(330 + nv, 400, nv);
+    const FusedSpan::Counts with = compare(Config{}, st, tris, what + " (begin)");
+    const FusedSpan::Counts without = compare(Config{}, st, tris, what, false, false);
+    EXPECT_EQ(without.cursor_starts, with.cursor_starts) << what;
+    EXPECT_GT(without.cursor_starts, 100u) << what;
+    EXPECT_GT(without.cursor_moves, without.cursor_starts) << what;
+  }
+  // Numbered apart: two stages, and one stage's successive triangles.
+  Config cfg;
+  const DrawState st = viewport_state(1);
+  SetupStage a(cfg, st), b(cfg, st);
+  RasterStats gs;
+  std::vector<SetupTriangle> pieces;
+  for (const ClipTriangle& t : small_tris(340, 20, 1)) geometry(cfg, st, t, 0, pieces, gs);
+  ASSERT_GE(pieces.size(), 2u);
+  uint64_t sa0 = 0, sa1 = 0, sb0 = 0;
+  a.step(pieces[0], [&](const TriangleEquations& eq) { sa0 = eq.serial; });
+  a.step(pieces[1], [&](const TriangleEquations& eq) { sa1 = eq.serial; });
+  b.step(pieces[0], [&](const TriangleEquations& eq) { sb0 = eq.serial; });
+  EXPECT_NE(sa0, 0u);
+  EXPECT_NE(sa0, sa1);
+  EXPECT_NE(sa0, sb0);
+  EXPECT_NE(sa1, sb0);
 }
 
 namespace {
