@@ -47,22 +47,32 @@ class FragmentSink {
       emit(f);
     }
   }
+  // Optional, for a sink keeping records as they are in memory of its own: room for
+  // `max_records` records of `num_varyings` varyings (nullptr: not offered). The fused chain then
+  // writes a span's passing fragments there and calls span_done(count) — the same fragments as
+  // emit_span, without the copy. Asked only of a sink that called offer_span_space() (no
+  // virtual call per span for the others).
+  virtual uint8_t* span_space(size_t /*max_records*/, int /*num_varyings*/) { return nullptr; }
+  virtual void span_done(size_t /*count*/) {}
   // Called once by each chain that will emit into the sink (triangles, then line segments, whose
   // draw state may have more varyings), before its first emit.
   virtual void draw_state(const DrawState&) {}
 
-  // A sink keeping the records as they are (KeepFragments) names its store: where its
+  // A sink keeping the records in a FragmentStore (KeepFragments) names it: where its
   // num_varyings is the chain's, the fused chain appends each span's passing fragments to it
   // directly (FragmentStore::append_space / append_commit) — the same fragments as emit_span,
   // without the copy and without a virtual call per span (docs/speed.md "Session 10: the span
-  // and the sink"). nullptr (the default): every span goes to emit_span.
+  // and the sink"). nullptr (the default): span_space if offered, else emit_span.
   FragmentStore* record_store() const { return store_; }
+  bool offers_span_space() const { return lends_; }
 
  protected:
   void set_record_store(FragmentStore* s) { store_ = s; }
+  void offer_span_space() { lends_ = true; }
 
  private:
   FragmentStore* store_ = nullptr;
+  bool lends_ = false;
 };
 
 // Holds every fragment: appends them to a compact store (FrameOutput::fragments in

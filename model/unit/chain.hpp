@@ -236,13 +236,18 @@ class FragmentChain {
       const int nv = fused_.num_varyings();
       uint64_t pass;
       // The span's passing fragments as records: none without a sink; into the sink's store
-      // (non-virtual, FragmentSink::record_store); else to the sink in one call.
+      // (non-virtual, FragmentSink::record_store) or memory it lends (span_space); else to the
+      // sink in one call.
       FragmentStore* store = sink_ ? sink_->record_store() : nullptr;
+      uint8_t* lent = nullptr;
       if (!sink_) {
         pass = fused_.run_begun(eq, sp, nullptr);
       } else if (store && store->num_varyings() == nv) {
         pass = fused_.run_begun(eq, sp, store->append_space((size_t)n));
         store->append_commit((size_t)pass);
+      } else if (sink_->offers_span_space() && (lent = sink_->span_space((size_t)n, nv)) != nullptr) {
+        pass = fused_.run_begun(eq, sp, lent);
+        sink_->span_done((size_t)pass);
       } else {
         const size_t need = (size_t)n * fragment_record_bytes(nv);
         if (records_.size() < need) records_.resize(need);

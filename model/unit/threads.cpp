@@ -148,6 +148,7 @@ void copy_used(const TriangleEquations& a, int nv, TriangleEquations& b) {
 // layout, at most `cap` of them (its rows' candidate pixels) from `p` on.
 class WindowSink final : public FragmentSink {
  public:
+  WindowSink() { offer_span_space(); }  // span_space is asked only of a sink offering it
   void reset(uint8_t* p, size_t cap, int nv) {
     p_ = p, cap_ = cap, n_ = 0, nv_ = nv, stride_ = fragment_record_bytes(nv);
   }

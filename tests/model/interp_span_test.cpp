@@ -388,6 +388,26 @@ TEST(FusedSpan, SpanRecordsReachEverySinkAsTheSameFragments) {
       s.append(b);
     }
   };
+  // Lends memory of its own (span_space / span_done, offered: asked per span); the same without
+  // offering it (never asked: emit_span's copy).
+  struct Lends : FragmentSink {
+    FragmentStore s;
+    uint64_t lent = 0, copied = 0;
+    explicit Lends(bool offer) {
+      if (offer) offer_span_space();
+    }
+    void draw_state(const DrawState& st) override { s.widen(st.num_varyings); }
+    void emit(const Fragment& f) override { s.push_back(f); }
+    void emit_span(const FragmentRecords& b) override {
+      ++copied;
+      s.append(b);
+    }
+    uint8_t* span_space(size_t n, int nv) override { return nv == s.num_varyings() ? s.append_space(n) : nullptr; }
+    void span_done(size_t count) override {
+      ++lent;
+      s.append_commit(count);
+    }
+  };
   struct OneByOne : FragmentSink {  // only emit: the default emit_span decodes
     FragmentStore s;
     void draw_state(const DrawState& st) override { s.widen(st.num_varyings); }
@@ -403,7 +423,9 @@ TEST(FusedSpan, SpanRecordsReachEverySinkAsTheSameFragments) {
     OneByOne one;
     FragmentStore kept, kept_wide;
     KeepFragments keep(kept), keep_wide(kept_wide);  // its memory lent / not (another shape)
-    FrameOutput f_keep_wide;
+    FrameOutput f_keep_wide, f_lends, f_asked_not;
+    Lends lends(true), not_offered(false);
+    lends.s.shape(nv), not_offered.s.shape(nv);
     kept_wide.shape(nv + 1);
     staged.s.shape(nv), spans.s.shape(nv), one.s.shape(nv), kept.shape(nv);
     wide.s.shape(nv + 1);  // more varyings than the draw: each record widened
@@ -415,12 +437,18 @@ TEST(FusedSpan, SpanRecordsReachEverySinkAsTheSameFragments) {
     run_raster_unit_to(cfg, st, tris, f_wide, &wide, none);
     run_raster_unit_to(cfg, st, tris, f_keep, &keep, none);
     run_raster_unit_to(cfg, st, tris, f_keep_wide, &keep_wide, none);
+    run_raster_unit_to(cfg, st, tris, f_lends, &lends, none);
+    run_raster_unit_to(cfg, st, tris, f_asked_not, &not_offered, none);
+    EXPECT_GT(lends.lent, 100u) << nv;  // every fused span in its memory
+    EXPECT_EQ(lends.copied, 0u) << nv;
+    EXPECT_EQ(not_offered.lent, 0u) << nv;  // not offered: never asked
+    EXPECT_GT(not_offered.copied, 100u) << nv;
     EXPECT_EQ(kept_wide.num_varyings(), nv + 1);
     EXPECT_EQ(staged.blocks, 0u);       // the staged chain emits one at a time
     EXPECT_GT(spans.blocks, 100u) << nv;  // the fused chain per span
     EXPECT_EQ(spans.records, spans.s.size());
     ASSERT_GT(staged.s.size(), 1000u) << nv;
-    for (const FragmentStore* got : {&spans.s, &one.s, &wide.s, &kept, &kept_wide}) {
+    for (const FragmentStore* got : {&spans.s, &one.s, &wide.s, &kept, &kept_wide, &lends.s, &not_offered.s}) {
       ASSERT_EQ(got->size(), staged.s.size()) << nv;
       uint64_t bad = 0;
       for (size_t i = 0; i < got->size(); ++i) {
@@ -431,7 +459,7 @@ TEST(FusedSpan, SpanRecordsReachEverySinkAsTheSameFragments) {
       EXPECT_EQ(bad, 0u) << nv;
     }
     EXPECT_EQ(wide.s.num_varyings(), nv + 1);
-    for (const FrameOutput* f : {&f_spans, &f_one, &f_wide, &f_keep, &f_keep_wide}) {
+    for (const FrameOutput* f : {&f_spans, &f_one, &f_wide, &f_keep, &f_keep_wide, &f_lends, &f_asked_not}) {
       EXPECT_TRUE(f->depth == f_staged.depth) << nv;
       EXPECT_EQ(f->stats.fragments_depth_pass, f_staged.stats.fragments_depth_pass) << nv;
       EXPECT_EQ(f->stats.fragments_depth_fail, f_staged.stats.fragments_depth_fail) << nv;
