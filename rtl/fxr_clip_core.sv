@@ -317,12 +317,33 @@ module fxr_clip_core (
   logic [QW-1:0] q_n;                  // |d_s - d_e|, normalised (msb set)
   logic signed [IB-1:0] q_lead;        // its msb index before normalising
 
-  // Normalisation of a magnitude: {leading zeros, x shifted up by them}, in LzaBits steps (the value
-  // padded below to a power of two, shifted by 2^l where its top 2^l bits are zero) rather than a
-  // priority chain AW multiplexers deep; 0 for x = 0. Used for A (AW bits) and, placed at A's top,
-  // for q (QW <= AW bits: the same count, the normalised q in the top QW bits).
-  // One normaliser, shared by SQuot and SNorm (the data process, below).
-  localparam int AP = 1 << LzaBits;  // > AW
+  // Normalisation of a magnitude: its leading one's index and the magnitude shifted up to it, by
+  // the shared log-step normaliser (rtl/fxr_norm_log.sv) rather than a priority chain AW
+  // multiplexers deep. One instance, shared by SQuot and SNorm and enabled only there: SQuot's
+  // q = |d_s - d_e| placed at A's top (QW <= AW bits: the normalised q in the top QW bits, its
+  // leading one ALB above q's own), SNorm's |acc| (A, AW bits).
+  logic nrm_en;
+  logic signed [DW:0] q_raw;         // d_s - d_e (SQuot)
+  logic [AW-1:0] nrm_x, nrm_n;       // the operand, normalised
+  logic [LzaBits-1:0] nrm_msb;       // its leading one (0 for 0)
+  assign nrm_en = state == SQuot || state == SNorm;
+  always_comb begin
+    q_raw = '0;
+    nrm_x = '0;
+    if (nrm_en) begin
+      q_raw = DW1'(d_s) - DW1'(d_e);
+      nrm_x = (state == SQuot) ? {QW'(q_raw < 0 ? -q_raw : q_raw), ALB'(0)} : AW'(acc < 0 ? -acc : acc);
+    end
+  end
+  fxr_norm_log #(
+    .Width  (AW),
+    .MsbBits(LzaBits)
+  ) u_nrm (
+    .en_i  (nrm_en),
+    .x_i   (nrm_x),
+    .norm_o(nrm_n),
+    .msb_o (nrm_msb)
+  );
 
   // ---- one component of the new vertex ---------------------------------------------------------
   // Component c of vertex x; the attribute w of a vertex is its wa, or its w_c where wa is 0
@@ -487,24 +508,6 @@ module fxr_clip_core (
   end
 
   always_ff @(posedge clk_i) begin : p_data
-    // the shared normaliser's operand, its steps and result (SQuot, SNorm)
-    logic [AW-1:0] nrm_x;
-    logic [AP-1:0] nrm_v;
-    logic [LzaBits-1:0] nrm_lz;
-    logic signed [DW:0] q_raw;
-    if (state == SQuot || state == SNorm) begin
-      // SQuot: q = |d_s - d_e| placed at A's top (QW <= AW bits: the same count, the normalised q
-      // in the top QW bits); SNorm: |acc|
-      q_raw = DW1'(d_s) - DW1'(d_e);
-      nrm_x = (state == SQuot) ? {QW'(q_raw < 0 ? -q_raw : q_raw), ALB'(0)} : AW'(acc < 0 ? -acc : acc);
-      nrm_v = AP'(nrm_x) << (AP - AW);
-      nrm_lz = '0;
-      for (int l = LzaBits - 1; l >= 0; l--) begin
-        nrm_lz = ((nrm_v >> (AP - (1 << l))) == '0) ? nrm_lz | (LzaBits'(1) << l) : nrm_lz;
-        nrm_v = ((nrm_v >> (AP - (1 << l))) == '0) ? nrm_v << (1 << l) : nrm_v;
-      end
-      if (nrm_x == '0) nrm_lz = '0;
-    end
     case (state)
       SIdle: begin
         if (take) begin
@@ -570,8 +573,8 @@ module fxr_clip_core (
       end
       SQuot: begin
         q_neg <= q_raw < 0;
-        q_n <= nrm_v[AP-1 -: QW];
-        q_lead <= IB'(QW - 1) - IB'(nrm_lz);
+        q_n <= nrm_n[AW-1 -: QW];
+        q_lead <= IB'(nrm_msb) - IB'(ALB);  // q's leading one: ALB below the operand's
         comp <= '0;
       end
       SCompSet: begin
@@ -606,9 +609,7 @@ module fxr_clip_core (
       end
       SNorm: begin
         logic [AW-1:0] a_n;
-        logic [LzaBits-1:0] lza;
-        a_n = nrm_v[AP-1 -: AW];
-        lza = nrm_lz;
+        a_n = nrm_n;
         r_zero <= acc == '0;
         r_neg <= (acc < 0) ^ q_neg;
         rem <= {1'b0, a_n[AW-1 -: QW]};
@@ -617,7 +618,7 @@ module fxr_clip_core (
         first <= 1'b1;
         steps <= StepBits'(bits_c) + StepBits'(3);
         // value = quo * 2^ebase, ebase = emin - (bits + 2 - (lead(A) - lead(q)))
-        ebase <= IB'(emin) - IB'(bits_c) - IB'(2) + (IB'(AW - 1) - IB'(lza)) - q_lead;
+        ebase <= IB'(emin) - IB'(bits_c) - IB'(2) + IB'(nrm_msb) - q_lead;
       end
       SDiv: begin
         logic [QW:0] rt;

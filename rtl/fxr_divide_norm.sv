@@ -19,36 +19,19 @@ module fxr_divide_norm #(
   output logic [OutBits-1:0] sig_o,
   output logic [MsbBits-1:0] msb_o
 );
-  // Leading one (priority encoder) and the left shift that puts it at bit InBits-1.
-  // The leading one and the shift to it in one log-step normaliser: x placed at the top of a
-  // power-of-two word, shifted up by 2^l wherever its top 2^l bits are zero (l from the largest
-  // down), the shifts' sum is the count of leading zeros lz = InBits − 1 − m. Not a priority loop
-  // over the InBits bits and a barrel shift by InBits − 1 − m: Verilator runs that loop bit by bit
-  // in every evaluation (125 iterations for the back end's denominator; docs/rtl.md,
-  // "Co-simulation speed", session 8), and the shifter is the same.
-  localparam int LzBits  = $clog2(InBits);
-  localparam int PadBits = 1 << LzBits;  // >= InBits
+  // The leading one m and x shifted up to it (xn, msb at bit InBits-1): the shared log-step
+  // normaliser (rtl/fxr_norm_log.sv), gated by en_i as the rounding below.
   logic [MsbBits-1:0] m;
   logic [InBits-1:0]  xn;
-  logic [PadBits-1:0] nv;
-  logic [LzBits-1:0]  lz;
-  always_comb begin
-    m  = '0;
-    xn = '0;
-    nv = '0;
-    lz = '0;
-    if (en_i) begin
-      nv = PadBits'(x_i) << (PadBits - InBits);
-      for (int l = LzBits - 1; l >= 0; l--) begin
-        if ((nv >> (PadBits - (1 << l))) == '0) begin
-          lz = lz | (LzBits'(1) << l);
-          nv = nv << (1 << l);
-        end
-      end
-      xn = nv[PadBits-1 -: InBits];
-      m  = (x_i == '0) ? '0 : MsbBits'(InBits - 1) - MsbBits'(lz);
-    end
-  end
+  fxr_norm_log #(
+    .Width  (InBits),
+    .MsbBits(MsbBits)
+  ) u_norm (
+    .en_i  (en_i),
+    .x_i   (x_i),
+    .norm_o(xn),
+    .msb_o (m)
+  );
 
   if (InBits > OutBits) begin : gen_round
     // the bits below the rounding bit (none when InBits = OutBits + 1)

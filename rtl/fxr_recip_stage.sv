@@ -83,15 +83,19 @@ module fxr_recip_stage #(
     assign w_sig = in_flat[At-2 -: SigBits];
     assign w_exp = in_flat[At-2-SigBits -: FxExp];
 
-    // Leading one of w_sig (msb index p), the significand left-aligned.
+    // Leading one of w_sig (msb index p; 0 for w_sig = 0), the significand left-aligned: the
+    // shared log-step normaliser (rtl/fxr_norm_log.sv).
     logic [LzBits-1:0]  p;
     logic [SigBits-1:0] aligned;
-    always_comb begin
-      p = '0;
-      for (int b = 0; b < SigBits; b++)
-        if (w_sig[b]) p = LzBits'(b);
-    end
-    assign aligned = w_sig << (LzBits'(SigBits - 1) - p);
+    fxr_norm_log #(
+      .Width  (SigBits),
+      .MsbBits(LzBits)
+    ) u_norm (
+      .en_i  (1'b1),
+      .x_i   (w_sig),
+      .norm_o(aligned),
+      .msb_o (p)
+    );
 
     // The top N bits, rounded to nearest even when SigBits > N (a carry moves to the next binade).
     logic [N-1:0] m;

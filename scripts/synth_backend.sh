@@ -22,7 +22,7 @@ mkdir -p "$out"
 srcs=""
 cfg_pkg=$(realpath "${CONFIG_PKG:-$gen/fxr_config_pkg.sv}")
 for m in fxr_pipe fxr_setup_align fxr_setup_edges fxr_setup_attr fxr_setup_plane fxr_setup_fields fxr_setup \
-         fxr_traverse fxr_interp fxr_depth fxr_divide fxr_divide_norm fxr_div fxr_div_align fxr_div_radix2 \
+         fxr_traverse fxr_interp fxr_depth fxr_divide fxr_divide_norm fxr_norm_log fxr_div fxr_div_align fxr_div_radix2 \
          fxr_div_radix2_pre fxr_div_radix2_post fxr_div_recip_mul fxr_div_shared_recip \
          fxr_seed_rom fxr_nr_step fxr_round fxr_raster_backend; do
   srcs="$srcs $root/rtl/$m.sv"

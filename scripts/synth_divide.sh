@@ -17,7 +17,7 @@ vars=("$@"); [ ${#vars[@]} -eq 0 ] && vars=(radix2_l2 radix2_l1 shared_l2 shared
 root=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 files=""
-for f in fxr_divide fxr_divide_norm fxr_div fxr_div_align fxr_div_radix2 fxr_div_radix2_pre \
+for f in fxr_divide fxr_divide_norm fxr_norm_log fxr_div fxr_div_align fxr_div_radix2 fxr_div_radix2_pre \
          fxr_div_radix2_post fxr_div_recip_mul fxr_div_shared_recip fxr_seed_rom \
          fxr_nr_step fxr_round; do
   files="$files $root/rtl/$f.sv"

@@ -26,7 +26,7 @@ mkdir -p "$out/cache"
 cfg_pkg=$(realpath "${CONFIG_PKG:-$gen/fxr_config_pkg.sv}")
 srcs=""
 for m in fxr_pipe fxr_round fxr_input fxr_clip_core fxr_clip fxr_seed_rom fxr_nr_step fxr_recip fxr_recip_stage \
-         fxr_divide_norm fxr_viewport_lane fxr_viewport_snap fxr_viewport_core fxr_viewport \
+         fxr_divide_norm fxr_norm_log fxr_viewport_lane fxr_viewport_snap fxr_viewport_core fxr_viewport \
          fxr_setup_align fxr_setup_edges fxr_setup_attr fxr_setup_plane fxr_setup_fields fxr_setup \
          fxr_traverse fxr_interp fxr_depth fxr_divide fxr_div fxr_div_align fxr_div_radix2 \
          fxr_div_radix2_pre fxr_div_radix2_post fxr_div_recip_mul fxr_div_shared_recip \

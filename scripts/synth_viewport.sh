@@ -1,7 +1,7 @@
 #!/bin/bash
 # LUT4 / flip-flop / depth figures of stage 4, rtl/fxr_viewport.sv (docs/rtl.md "fxr_viewport"),
 # with the flow of scripts/synth_divide.sh:
-#   yosys: read_verilog -sv PKG RECPKG rtl/fxr_viewport*.sv rtl/fxr_divide_norm.sv;
+#   yosys: read_verilog -sv PKG RECPKG rtl/fxr_viewport*.sv rtl/fxr_divide_norm.sv rtl/fxr_norm_log.sv;
 #          chparam -set Lanes L fxr_viewport; synth -flatten -top TOP; abc -lut 4 [-fast];
 #          opt_clean; stat; ltp -noff
 # Variants: l1 l3 l7 (fxr_viewport with Lanes 1, 3 (the default), 7, flattened), lane
@@ -18,7 +18,7 @@ vars=("$@"); [ ${#vars[@]} -eq 0 ] && vars=(snap lane l1 l3)
 root=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 files=""
-for f in fxr_viewport fxr_viewport_core fxr_viewport_lane fxr_viewport_snap fxr_divide_norm; do
+for f in fxr_viewport fxr_viewport_core fxr_viewport_lane fxr_viewport_snap fxr_divide_norm fxr_norm_log; do
   files="$files $root/rtl/$f.sv"
 done
 for v in "${vars[@]}"; do
