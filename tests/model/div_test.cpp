@@ -358,6 +358,25 @@ std::vector<DivConfig> fast64_edge_shapes() {
           shape(DivAlgorithm::Radix2, 20, 39, 24)};
 }
 
+// Every operand pair (n, d) of each shape (operands of at most 12 bits): a 64-bit fast path
+// `fast(c, n, d)` against div_sig_exact and the independent reference ref_div; `seen(c, n, d)`
+// after each pair, for the tests that count which way the path went. Stops at a shape's first
+// mismatch.
+template <class Fast, class Seen>
+void expect_fast_path_on_every_operand_pair(const std::vector<DivConfig>& shapes, Fast fast, Seen seen) {
+  for (const DivConfig& c : shapes) {
+    ASSERT_TRUE(div_fast64_ok(c)) << div_label(c);
+    const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
+    for (uint64_t d = dlo; d < 2 * dlo; ++d)
+      for (uint64_t n = nlo; n < 2 * nlo; ++n) {
+        const DivSig f = fast(c, n, d);
+        ASSERT_EQ(f, div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+        ASSERT_EQ(f, ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d)) << div_label(c) << " n=" << n << " d=" << d;
+        seen(c, n, d);
+      }
+  }
+}
+
 }  // namespace
 
 TEST(DivFast64, AppliesExactlyWhereTheDividendFits64Bits) {
@@ -372,17 +391,10 @@ TEST(DivFast64, AppliesExactlyWhereTheDividendFits64Bits) {
 }
 
 TEST(DivFast64, BitIdenticalToExactForAll12BitOperands) {
-  for (const DivConfig& c : {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14),
-                             shape(DivAlgorithm::Radix2, 9, 12, 10), shape(DivAlgorithm::Radix2, 11, 11, 4)}) {
-    ASSERT_TRUE(div_fast64_ok(c));
-    const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
-    for (uint64_t n = nlo; n < 2 * nlo; ++n)
-      for (uint64_t d = dlo; d < 2 * dlo; ++d) {
-        const DivSig f = div_sig_fast64(c, n, d);
-        ASSERT_EQ(f, div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
-        ASSERT_EQ(f, ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d)) << div_label(c) << " n=" << n << " d=" << d;
-      }
-  }
+  expect_fast_path_on_every_operand_pair(
+      {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14),
+       shape(DivAlgorithm::Radix2, 9, 12, 10), shape(DivAlgorithm::Radix2, 11, 11, 4)},
+      div_sig_fast64, [](const DivConfig&, uint64_t, uint64_t) {});
 }
 
 TEST(DivFast64, BitIdenticalOnTenMillionPlusTiesAtDefaultAndEdgeWidths) {
@@ -456,21 +468,12 @@ struct RecipOutcomes {
 
 TEST(DivRecip64, BitIdenticalToExactForAll12BitOperands) {
   RecipOutcomes o;
-  for (const DivConfig& c : {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14),
-                             shape(DivAlgorithm::Radix2, 9, 12, 10), shape(DivAlgorithm::Radix2, 11, 11, 4),
-                             shape(DivAlgorithm::Radix2, 12, 12, 51)}) {  // 12 + 51 = 63: the limit
-    ASSERT_TRUE(div_fast64_ok(c));
-    const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
-    for (uint64_t d = dlo; d < 2 * dlo; ++d) {
-      const uint64_t R = div_recip64(c, d);
-      for (uint64_t n = nlo; n < 2 * nlo; ++n) {
-        const DivSig f = div_sig_recip64(c, n, d, R);
-        ASSERT_EQ(f, div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
-        ASSERT_EQ(f, ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d)) << div_label(c) << " n=" << n << " d=" << d;
-        o.count(c, n, d);
-      }
-    }
-  }
+  expect_fast_path_on_every_operand_pair(
+      {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14),
+       shape(DivAlgorithm::Radix2, 9, 12, 10), shape(DivAlgorithm::Radix2, 11, 11, 4),
+       shape(DivAlgorithm::Radix2, 12, 12, 51)},  // 12 + 51 = 63: the limit
+      [](const DivConfig& c, uint64_t n, uint64_t d) { return div_sig_recip64(c, n, d, div_recip64(c, d)); },
+      [&](const DivConfig& c, uint64_t n, uint64_t d) { o.count(c, n, d); });
   EXPECT_GT(o.exact, 0u);
   EXPECT_GT(o.corrected, 0u);
 }
@@ -534,19 +537,12 @@ TEST(DivRecip64Frac, TheBandTestAtItsEdges) {
 // fractions, so decisions next to it are frequent).
 TEST(DivRecip64Frac, BitIdenticalToExactForAll12BitOperands) {
   uint64_t decided = 0, remainder = 0;
-  for (const DivConfig& c : {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14),
-                             shape(DivAlgorithm::Radix2, 9, 12, 10), shape(DivAlgorithm::Radix2, 11, 11, 4),
-                             shape(DivAlgorithm::Radix2, 12, 12, 48), shape(DivAlgorithm::Radix2, 12, 12, 51)}) {
-    ASSERT_TRUE(div_fast64_ok(c));
-    const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
-    for (uint64_t d = dlo; d < 2 * dlo; ++d)
-      for (uint64_t n = nlo; n < 2 * nlo; ++n) {
-        const DivSig f = recip64_frac(c, n, d);
-        ASSERT_EQ(f, div_sig_exact(c, n, d)) << div_label(c) << " n=" << n << " d=" << d;
-        ASSERT_EQ(f, ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d)) << div_label(c) << " n=" << n << " d=" << d;
-        (frac_decided(c, n, d) ? decided : remainder) += 1;
-      }
-  }
+  expect_fast_path_on_every_operand_pair(
+      {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14),
+       shape(DivAlgorithm::Radix2, 9, 12, 10), shape(DivAlgorithm::Radix2, 11, 11, 4),
+       shape(DivAlgorithm::Radix2, 12, 12, 48), shape(DivAlgorithm::Radix2, 12, 12, 51)},
+      recip64_frac,
+      [&](const DivConfig& c, uint64_t n, uint64_t d) { (frac_decided(c, n, d) ? decided : remainder) += 1; });
   EXPECT_GT(decided, 1000000u);
   EXPECT_GT(remainder, 100000u);
 }
@@ -568,7 +564,9 @@ TEST(DivRecip64Frac, BitIdenticalOnTenMillionPlusTiesAtDefaultAndEdgeWidths) {
                     });
     EXPECT_EQ(mismatches, 0u) << div_label(c);
     EXPECT_GT(remainder, 0u) << div_label(c);
-    if (div_align_bits(c) + c.quot_bits < 63) EXPECT_GT(decided, 0u) << div_label(c);
+    if (div_align_bits(c) + c.quot_bits < 63) {
+      EXPECT_GT(decided, 0u) << div_label(c);
+    }
   }
 }
 
