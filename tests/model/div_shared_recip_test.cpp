@@ -16,6 +16,7 @@
 #include "model/arith/div.hpp"
 #include "model/config/config.hpp"
 #include "model/stages/divide.hpp"
+#include "tests/model/div_ties.hpp"
 
 using namespace fxr;
 
@@ -156,17 +157,8 @@ TEST(SharedRecip, DefaultWidthsWithinTheBoundOnAMillionRandomAndTies) {
   for (int i = 0; i < 1'000'000; ++i) check_pair(c, nlo + rng() % nlo, dlo + rng() % dlo, bound, t);
   for (uint64_t n : {nlo, nlo + 1, 2 * nlo - 2, 2 * nlo - 1})
     for (uint64_t d : {dlo, dlo + 1, 2 * dlo - 2, 2 * dlo - 1}) check_pair(c, n, d, bound, t);
-  // Ties of the exact quotient: b = m·2^qb, a = (2q + 1)·m (halved when it needs nb + 1 bits).
-  for (int i = 0; i < 100000; ++i) {
-    const uint64_t m = (1ull << (db - 1 - qb)) + rng() % (1ull << (db - 1 - qb));
-    const uint64_t q = (1ull << (qb - 1)) + rng() % (1ull << (qb - 1));
-    u128 a = (u128)(2 * q + 1) * m;
-    if (a >> nb) {
-      if (a & 1) continue;
-      a >>= 1;
-    }
-    for (int delta = -1; delta <= 1; ++delta) check_pair(c, (uint64_t)a + delta, m << qb, bound, t);
-  }
+  // Ties of the exact quotient and their neighbours (tests/model/div_ties.hpp).
+  div_ties::for_each_tie(nb, db, qb, 100000, rng, [&](uint64_t n, uint64_t d) { check_pair(c, n, d, bound, t); });
   // Divisors on the seed table's segment edges, numerators equal to the divisor ± 1.
   for (int i = 0; i < 100000; ++i) {
     const uint64_t edge = dlo + ((rng() % (1ull << c.seed_index_bits)) << (db - 1 - c.seed_index_bits));

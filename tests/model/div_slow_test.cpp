@@ -7,6 +7,7 @@
 #include <random>
 
 #include "model/arith/div.hpp"
+#include "tests/model/div_ties.hpp"
 
 using namespace fxr;
 
@@ -27,23 +28,10 @@ uint64_t count_mismatches(const DivConfig& c, uint64_t count, uint64_t seed, boo
     const uint64_t n = nlo + rng() % nlo, d = dlo + rng() % dlo;
     if (fast(n, d) != div_sig_exact(c, n, d) && ++bad <= 5) ADD_FAILURE() << "n=" << n << " d=" << d;
   }
-  // Exact ties: n/d = (q + ½)·2^−(qb−1) with d = m·2^qb, n = (2q + 1)·m (halved when it
-  // overflows nb bits and is even), and its neighbours.
-  const int qb = c.quot_bits, db = c.den_bits, nb = c.num_bits;
-  for (int i = 0; i < 1000000 && db - 1 - qb >= 0; ++i) {
-    const uint64_t m = (1ull << (db - 1 - qb)) + rng() % (1ull << (db - 1 - qb));
-    const uint64_t q = (1ull << (qb - 1)) + rng() % (1ull << (qb - 1));
-    unsigned __int128 a = (unsigned __int128)(2 * q + 1) * m;
-    if (a >> nb) {
-      if (a & 1) continue;
-      a >>= 1;
-    }
-    for (int delta = -1; delta <= 1; ++delta) {
-      const uint64_t n = (uint64_t)a + delta, d = m << qb;
-      if ((n >> (nb - 1)) != 1) continue;
-      if (fast(n, d) != div_sig_exact(c, n, d) && ++bad <= 5) ADD_FAILURE() << "tie n=" << n << " d=" << d;
-    }
-  }
+  // Exact ties and their neighbours (tests/model/div_ties.hpp).
+  div_ties::for_each_tie(c.num_bits, c.den_bits, c.quot_bits, 1000000, rng, [&](uint64_t n, uint64_t d) {
+    if (fast(n, d) != div_sig_exact(c, n, d) && ++bad <= 5) ADD_FAILURE() << "tie n=" << n << " d=" << d;
+  });
   return bad;
 }
 

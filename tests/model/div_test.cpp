@@ -10,6 +10,7 @@
 #include "model/config/config.hpp"
 #include "analysis/measure.hpp"
 #include "model/arith/div.hpp"
+#include "tests/model/div_ties.hpp"
 
 using namespace fxr;
 
@@ -80,16 +81,7 @@ void random_and_ties(const DivConfig& c, uint64_t count, uint64_t seed, F&& chec
   const uint64_t nlo = 1ull << (nb - 1), dlo = 1ull << (db - 1);
   for (uint64_t i = 0; i < count; ++i) check(nlo + rng() % nlo, dlo + rng() % dlo);
   ASSERT_EQ(nb, db) << "tie construction below assumes equal operand widths";
-  for (int i = 0; i < 100000; ++i) {
-    const uint64_t m = (1ull << (db - 1 - qb)) + rng() % (1ull << (db - 1 - qb));
-    const uint64_t q = (1ull << (qb - 1)) + rng() % (1ull << (qb - 1));
-    u128 a = (u128)(2 * q + 1) * m;
-    if (a >> nb) {
-      if (a & 1) continue;
-      a >>= 1;
-    }
-    for (int delta = -1; delta <= 1; ++delta) check((uint64_t)a + delta, m << qb);
-  }
+  div_ties::for_each_tie(nb, db, qb, 100000, rng, check);
 }
 
 mpq_class mpq_pow2(long e) {
