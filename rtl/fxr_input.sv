@@ -16,6 +16,9 @@
 //                                 position (takes precedence), else an infinity in a position
 //   var_replaced_o                the primitive transferred in this clock is emitted and one of its
 //                                 varyings was NaN / ±Inf and replaced (prims_varying_nonfinite)
+//   var_zero_i                    bit k set: varying k of every vertex enters as +0 (the unit's
+//                                 number of varyings; a forced varying is neither replaced nor
+//                                 counted). 0 (every varying as given) where unconnected.
 //   The three pulses are combinational on the input transfer (in_valid_i && in_ready_o), so a
 //   counter adds them in the clock the primitive is taken.
 //
@@ -42,7 +45,8 @@ module fxr_input (
   output fxr_rec_pkg::exact_triangle_t out_o,
   output logic                         rej_nan_o,
   output logic                         rej_inf_o,
-  output logic                         var_replaced_o
+  output logic                         var_replaced_o,
+  input  logic [fxr_rec_pkg::NumVaryings-1:0] var_zero_i
 );
   // IEEE-754 binary32: the word width comes from the record package, the exponent width and
   // bias are the format's (docs/references.md, IEEE 754). The widths are fxr_rec_pkg's
@@ -68,51 +72,44 @@ module fxr_input (
   localparam logic [F32Bits-2:0] MaxFinite = {{(F32ExpBits - 1){1'b1}}, 1'b0, {F32FracBits{1'b1}}};
 
   logic [InBits-1:0]  in_flat;
-  logic [OutBits-1:0] conv;
-  logic [NumWords-1:0] w_nan, w_inf;
   logic any_nan, any_inf, any_repl, take;
-
   assign in_flat = in_i;
-  assign conv[OutBits-1 -: PrimBits] = in_flat[InBits-1 -: PrimBits];
 
-  for (genvar j = 0; j < NumWords; j++) begin : g_word
-    localparam bit IsPos = (j % WordsPerVertex) < 4;
-    logic [F32Bits-1:0] raw, bits;
-    logic [F32ExpBits-1:0] e;
-    logic [F32FracBits-1:0] f;
-    logic e_ones, e_zero;
-    logic [SigBits-1:0] sig;
-    logic signed [ExpBits-1:0] ex;
+  // The word j of the input record (prim first).
+  function automatic logic [F32Bits-1:0] word(input logic [InBits-1:0] x, input int j);
+    word = x[InBits-PrimBits-1-F32Bits*j -: F32Bits];
+  endfunction
 
-    assign raw = in_flat[InBits-PrimBits-1-F32Bits*j -: F32Bits];
-    assign e_ones = &raw[F32Bits-2 -: F32ExpBits];
-    assign w_nan[j] = e_ones && (|raw[F32FracBits-1:0]);
-    assign w_inf[j] = e_ones && !(|raw[F32FracBits-1:0]);
-    if (IsPos) begin : g_pos
-      assign bits = raw;  // NaN / Inf rejects the primitive: the value is unused
-    end else begin : g_var
-      // The varying rule: NaN → +0, ±Inf → ±FLT_MAX, finite words unchanged.
-      always_comb begin
-        bits = raw;
-        if (w_nan[j]) bits = '0;
-        else if (w_inf[j]) bits = {raw[F32Bits-1], MaxFinite};
+  // The classes of the position words and of the varyings (those not forced to +0), evaluated only
+  // with an input offered: in_i is the unit's top-level input, and a simulator evaluates the logic
+  // that depends on it in every evaluation (docs/rtl.md, "Co-simulation speed", session 10).
+  logic [NumWords-1:0] w_nan, w_inf, pos_mask, var_on;
+  always_comb begin
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [F32Bits-1:0] w;  // (its sign bit is not read)
+    /* verilator lint_on UNUSEDSIGNAL */
+    w = '0;
+    w_nan = '0;
+    w_inf = '0;
+    if (in_valid_i) begin
+      for (int j = 0; j < NumWords; j++) begin
+        w = word(in_flat, j);
+        w_nan[j] = (&w[F32Bits-2 -: F32ExpBits]) && (|w[F32FracBits-1:0]);
+        w_inf[j] = (&w[F32Bits-2 -: F32ExpBits]) && !(|w[F32FracBits-1:0]);
       end
     end
-    assign e = bits[F32Bits-2 -: F32ExpBits];
-    assign f = bits[F32FracBits-1:0];
-    assign e_zero = ~|e;
-    assign sig = SigBits'({!e_zero, f});
-    assign ex = e_zero ? ExpSub : $signed(ExpBits'(e)) - ExpOffset;
-    assign conv[OutBits-PrimBits-1-ValBits*j -: ValBits] = {bits[F32Bits-1], sig, ex};
   end
-
-  logic [NumWords-1:0] pos_mask;
   for (genvar j = 0; j < NumWords; j++) begin : g_mask
     assign pos_mask[j] = (j % WordsPerVertex) < 4;
+    if ((j % WordsPerVertex) < 4) begin : g_pos
+      assign var_on[j] = 1'b0;
+    end else begin : g_var
+      assign var_on[j] = !var_zero_i[(j % WordsPerVertex) - 4];
+    end
   end
   assign any_nan = |(w_nan & pos_mask);
   assign any_inf = |(w_inf & pos_mask);
-  assign any_repl = |((w_nan | w_inf) & ~pos_mask);
+  assign any_repl = |((w_nan | w_inf) & var_on);
 
   assign in_ready_o = !out_valid_o || out_ready_i;
   assign take = in_valid_i && in_ready_o;
@@ -120,7 +117,6 @@ module fxr_input (
   assign rej_inf_o = take && !any_nan && any_inf;
   assign var_replaced_o = take && !any_nan && !any_inf && any_repl;
 
-  logic [OutBits-1:0] out_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       out_valid_o <= 1'b0;
@@ -128,8 +124,32 @@ module fxr_input (
       out_valid_o <= in_valid_i && !any_nan && !any_inf;
     end
   end
+  // The conversion, in the process that loads the output register (blocking variables read
+  // nowhere else: combinational logic in synthesis), evaluated only on an input transfer.
+  logic [OutBits-1:0] out_q;
+  /* verilator lint_off BLKSEQ */
   always_ff @(posedge clk_i) begin
-    if (take) out_q <= conv;
+    if (take) begin
+      logic [F32Bits-1:0] bits;
+      logic [F32ExpBits-1:0] e;
+      logic e_zero;
+      out_q[OutBits-1 -: PrimBits] <= in_flat[InBits-1 -: PrimBits];
+      for (int j = 0; j < NumWords; j++) begin
+        bits = word(in_flat, j);
+        if ((j % WordsPerVertex) >= 4) begin
+          // The varying rule: NaN → +0, ±Inf → ±FLT_MAX, finite words unchanged; a varying
+          // forced to +0 (var_zero_i) enters as +0.
+          if (var_zero_i[(j % WordsPerVertex) - 4]) bits = '0;
+          else if (&bits[F32Bits-2 -: F32ExpBits]) bits = (|bits[F32FracBits-1:0]) ? '0 : {bits[F32Bits-1], MaxFinite};
+        end  // a position word that is NaN / Inf rejects the primitive: its value is unused
+        e = bits[F32Bits-2 -: F32ExpBits];
+        e_zero = ~|e;
+        out_q[OutBits-PrimBits-1-ValBits*j -: ValBits] <=
+            {bits[F32Bits-1], SigBits'({!e_zero, bits[F32FracBits-1:0]}),
+             e_zero ? ExpSub : $signed(ExpBits'(e)) - ExpOffset};
+      end
+    end
   end
+  /* verilator lint_on BLKSEQ */
   assign out_o = out_q;
 endmodule

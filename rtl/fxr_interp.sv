@@ -14,6 +14,10 @@
 //   out_o                         fxr_rec_pkg::plane_sample_t: prim, x, y, the depth code, the 1/w
 //                                 sum den and every v/w sum num<m> with their block exponents
 //   out_last_o                    the span's last pixel (the dump's `last`)
+//   ctx_en_o                      ctx_i and in_i.prim are read in this clock (a span at the input
+//                                 that may be accepted, from registers and in_valid_i only): a
+//                                 caller may leave ctx_i '0 otherwise (fxr_raster_backend's
+//                                 equations FIFO read)
 //
 // Algorithm (exact, the model's values bit for bit). At the span start (x0, y) every plane is
 // evaluated directly, P = c + (x0 − i0)·dx + (y − j0)·dy (modulo 2^width: the exact value fits
@@ -72,7 +76,8 @@ module fxr_interp #(
   output logic                             out_valid_o,
   input  logic                             out_ready_i,
   output fxr_rec_pkg::plane_sample_t       out_o,
-  output logic                             out_last_o
+  output logic                             out_last_o,
+  output logic                             ctx_en_o
 );
 
   // ---- record layout (the generated structs; members first-field-most-significant) ----------
@@ -301,6 +306,7 @@ module fxr_interp #(
   // ports, and Verilator evaluates logic that depends on top-level inputs in every eval() (twice
   // per clock), where it evaluates the rest once (docs/rtl.md, "Co-simulation speed").
   assign plane_en   = in_valid_i & (front_q == FrIdle | (front_q == FrDone & (~b_valid_q | b_last)));
+  assign ctx_en_o   = plane_en;
 
   // The depth code of the current sample: RNE(q + r/den), clamped to [0, 2^db − 1].
   logic [RB-1:0]        two_r;

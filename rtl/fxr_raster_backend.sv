@@ -195,12 +195,14 @@ module fxr_raster_backend #(
   logic                             ip_in_valid, ip_in_ready;
   fxr_rec_pkg::span_t               ip_in;
   fxr_rec_pkg::triangle_equations_t ip_ctx;
-  // The entry is selected only with a span offered (interp reads ctx_i with in_valid_i; the
-  // record is '0 otherwise), so that a simulator skips the wide select on the other clocks
-  // (docs/rtl.md, "Co-simulation speed").
+  // The entry is selected only in a clock interp reads it (a span offered that it may accept:
+  // ip_ctx_en, fxr_interp's ctx_en_o; the record is '0 otherwise), so that a simulator skips the
+  // wide select on the other clocks — on a large triangle a span waits at interp's input for most
+  // of the clocks (docs/rtl.md, "Co-simulation speed", sessions 8 and 10).
+  logic ip_ctx_en;
   always_comb begin
     ip_ctx     = '0;
-    if (ip_in_valid) ip_ctx = eq_q[rd_sel * EqBits +: EqBits];
+    if (ip_in_valid && ip_ctx_en) ip_ctx = eq_q[rd_sel * EqBits +: EqBits];
     ip_in      = tv_out;
     ip_in.prim = ip_ctx.prim;
   end
@@ -243,7 +245,8 @@ module fxr_raster_backend #(
     .out_valid_o(ip_out_valid),
     .out_ready_i(ip_out_ready),
     .out_o      (ip_out),
-    .out_last_o (ip_out_last)
+    .out_last_o (ip_out_last),
+    .ctx_en_o   (ip_ctx_en)
   );
 
   // ---- stage 8: depth -----------------------------------------------------------------------------

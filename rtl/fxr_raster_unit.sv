@@ -104,10 +104,6 @@ module fxr_raster_unit #(
   output logic [StatBits-1:0]               perf_out_stall_o
 );
   localparam int NumVaryings = fxr_rec_pkg::NumVaryings;
-  localparam int F32Bits = fxr_rec_pkg::F32Bits;
-  localparam int PrimBits = fxr_rec_pkg::PrimIdBits;
-  localparam int InBits = fxr_rec_pkg::InputTriangleBits;
-  localparam int WordsPerVertex = 4 + NumVaryings;  // x, y, z, w, varyings
   localparam int VarBits = $clog2(NumVaryings + 1);
   localparam int CreatedBits = $clog2(fxr_rec_pkg::ClipMaxPolyVerts * fxr_rec_pkg::ClipNumPlanes + 1);
 
@@ -146,28 +142,21 @@ module fxr_raster_unit #(
     end
   end
 
-  // ---- the number of varyings: varyings from nvar_q on enter as +0 ------------------------------
-  logic [InBits-1:0] in_flat, in_masked;
-  assign in_flat = in_i;
-  // Evaluated only with an input offered ('0 otherwise: fxr_input reads in_i only then), so that a
-  // simulator skips the masking on the clocks without input (docs/rtl.md, "Co-simulation speed").
-  always_comb begin
-    in_masked = '0;
-    if (in_valid_i) begin
-      in_masked = in_flat;
-      for (int v = 0; v < 3; v++)
-        for (int k = 0; k < NumVaryings; k++)
-          if (VarBits'(k) >= nvar_q) in_masked[InBits - PrimBits - F32Bits * (v * WordsPerVertex + 4 + k) - 1 -: F32Bits] = '0;
-    end
+  // ---- the number of varyings: varyings from nvar_q on enter as +0 (fxr_input's var_zero_i) ------
+  // Applied in fxr_input, not by masking in_i here: logic on the top-level input record is
+  // evaluated by a simulator in every evaluation (docs/rtl.md, "Co-simulation speed", session 10).
+  logic [NumVaryings-1:0] var_zero;
+  for (genvar k = 0; k < NumVaryings; k++) begin : g_var_zero
+    assign var_zero[k] = VarBits'(k) >= nvar_q;
   end
 
   // ---- stage 1: input conversion -----------------------------------------------------------------
   logic s1_valid, s1_ready, rej_nan, rej_inf, var_repl;
   fxr_rec_pkg::exact_triangle_t s1_out;
   fxr_input u_input (
-    .clk_i, .rst_ni, .in_valid_i, .in_ready_o, .in_i(in_masked),
+    .clk_i, .rst_ni, .in_valid_i, .in_ready_o, .in_i,
     .out_valid_o(s1_valid), .out_ready_i(s1_ready), .out_o(s1_out),
-    .rej_nan_o(rej_nan), .rej_inf_o(rej_inf), .var_replaced_o(var_repl)
+    .rej_nan_o(rej_nan), .rej_inf_o(rej_inf), .var_replaced_o(var_repl), .var_zero_i(var_zero)
   );
 
   // ---- stage 2: clipper ----------------------------------------------------------------------------

@@ -122,10 +122,17 @@ module fxr_viewport_core #(
     end
   end
 
-  // ---- quotient jobs -------------------------------------------------------------------------
+  // ---- quotient jobs and lanes -----------------------------------------------------------------
   // A job, MSB first: kind (2: 0 XW, 1 YW, 2 ZD, 3 FLT), neg, n_sig, n_mul, d_sig, k (signed
   // KBits), zexp (signed ExpBits): fxr_viewport_lane's inputs. Flat vectors, not a struct (Yosys
-  // 0.23 mis-resolves members of struct variables declared in generate blocks).
+  // 0.23 mis-resolves members of struct variables declared in generate blocks). Job j = c·Lanes + l
+  // goes to lane l in slot c; each lane's job is built in its multiplexer, only while a triangle
+  // is in the input register and only for the current slot (the loop unrolls to constant indices),
+  // so that a simulator builds Lanes jobs per busy clock and none on an idle one (docs/rtl.md,
+  // "Co-simulation speed", session 10). Job j's vertex and value:
+  `define FXR_VP_I(c) (((c) * Lanes + l) / JobsPerVertex)
+  `define FXR_VP_Q(c) (((c) * Lanes + l) % JobsPerVertex)
+  `define FXR_VP_W(c) (4 + HasWa + `FXR_VP_Q(c) - 4)
   localparam int JZexp = 0;
   localparam int JK = JZexp + ExpBits;
   localparam int JDSig = JK + KBits;
@@ -134,27 +141,7 @@ module fxr_viewport_core #(
   localparam int JNeg = JNSig + SigBits;
   localparam int JKind = JNeg + 1;
   localparam int JobBits = JKind + 2;
-  logic [JobBits-1:0] job[Jobs];
-  for (genvar j = 0; j < Jobs; j++) begin : g_job
-    localparam int I = j / JobsPerVertex;
-    localparam int Q = j % JobsPerVertex;
-    if (Q < 3) begin : g_pos  // ax, ay, z: x_c, y_c, z_c over w_a
-      assign job[j] = {2'(Q), v_neg[I][Q], v_sig[I][Q],
-                       Q == 0 ? viewport_w_i : Q == 1 ? viewport_h_i : (WindowIntBits + 1)'(1), aw_sig[I],
-                       KBits'(v_exp[I][Q]) - KBits'(aw_exp[I]) + KBits'(Q == 2 ? ZFracBits : AttrSubBits - 1),
-                       ExpBits'(0)};
-    end else if (Q == 3) begin : g_rw  // 1 / w_a
-      assign job[j] = {2'd3, 1'b0, SigBits'(1), (WindowIntBits + 1)'(1), aw_sig[I], -(KBits'(aw_exp[I])), ExpBits'(0)};
-    end else begin : g_var  // v_k / w_a, or v_k / 1 (affine)
-      localparam int W = 4 + HasWa + (Q - 4);
-      // a zero varying: attr_quotient gives exponent 0, normalize_fx (affine) keeps the input's
-      assign job[j] = {2'd3, v_neg[I][W], v_sig[I][W], (WindowIntBits + 1)'(1), interp_i ? SigBits'(1) : aw_sig[I],
-                       KBits'(v_exp[I][W]) - (interp_i ? KBits'(0) : KBits'(aw_exp[I])),
-                       interp_i ? v_exp[I][W] : ExpBits'(0)};
-    end
-  end
 
-  // ---- lanes ---------------------------------------------------------------------------------
   logic [ResBits-1:0] lane_res[Lanes];
   logic               lane_rng[Lanes];
   logic               lane_v[Lanes];
@@ -162,12 +149,30 @@ module fxr_viewport_core #(
     logic [JobBits-1:0] jb;
     logic               jv;
     always_comb begin
-      jb = job[l];
+      jb = '0;
       jv = 1'b0;
-      for (int c = 0; c < Slots; c++) begin
-        if (SlotBits'(c) == slot && c * Lanes + l < Jobs) begin
-          jb = job[c * Lanes + l];
-          jv = 1'b1;
+      if (tri_v) begin
+        for (int c = 0; c < Slots; c++) begin
+          if (SlotBits'(c) == slot && c * Lanes + l < Jobs) begin
+            jv = 1'b1;
+            if (`FXR_VP_Q(c) < 3) begin  // ax, ay, z: x_c, y_c, z_c over w_a
+              jb = {2'(`FXR_VP_Q(c)), v_neg[`FXR_VP_I(c)][`FXR_VP_Q(c)], v_sig[`FXR_VP_I(c)][`FXR_VP_Q(c)],
+                    `FXR_VP_Q(c) == 0 ? viewport_w_i : `FXR_VP_Q(c) == 1 ? viewport_h_i : (WindowIntBits + 1)'(1),
+                    aw_sig[`FXR_VP_I(c)],
+                    KBits'(v_exp[`FXR_VP_I(c)][`FXR_VP_Q(c)]) - KBits'(aw_exp[`FXR_VP_I(c)]) +
+                        KBits'(`FXR_VP_Q(c) == 2 ? ZFracBits : AttrSubBits - 1),
+                    ExpBits'(0)};
+            end else if (`FXR_VP_Q(c) == 3) begin  // 1 / w_a
+              jb = {2'd3, 1'b0, SigBits'(1), (WindowIntBits + 1)'(1), aw_sig[`FXR_VP_I(c)],
+                    -(KBits'(aw_exp[`FXR_VP_I(c)])), ExpBits'(0)};
+            end else begin  // v_k / w_a, or v_k / 1 (affine)
+              // a zero varying: attr_quotient gives exponent 0, normalize_fx (affine) keeps the input's
+              jb = {2'd3, v_neg[`FXR_VP_I(c)][`FXR_VP_W(c)], v_sig[`FXR_VP_I(c)][`FXR_VP_W(c)], (WindowIntBits + 1)'(1),
+                    interp_i ? SigBits'(1) : aw_sig[`FXR_VP_I(c)],
+                    KBits'(v_exp[`FXR_VP_I(c)][`FXR_VP_W(c)]) - (interp_i ? KBits'(0) : KBits'(aw_exp[`FXR_VP_I(c)])),
+                    interp_i ? v_exp[`FXR_VP_I(c)][`FXR_VP_W(c)] : ExpBits'(0)};
+            end
+          end
         end
       end
     end
@@ -175,13 +180,16 @@ module fxr_viewport_core #(
       .SigBits(SigBits), .ExpBits(ExpBits), .WindowIntBits(WindowIntBits), .AttrSubBits(AttrSubBits),
       .ZFracBits(ZFracBits), .AttrSigBits(AttrSigBits)
     ) u_lane (
-      .clk_i, .en_i(adv), .rst_ni, .valid_i(tri_v && jv), .kind_i(jb[JKind +: 2]), .neg_i(jb[JNeg]), .n_sig_i(jb[JNSig +: SigBits]),
+      .clk_i, .en_i(adv), .rst_ni, .valid_i(jv), .kind_i(jb[JKind +: 2]), .neg_i(jb[JNeg]), .n_sig_i(jb[JNSig +: SigBits]),
       .n_mul_i(jb[JNMul +: WindowIntBits + 1]), .d_sig_i(jb[JDSig +: SigBits]), .k_i($signed(jb[JK +: KBits])),
       .zexp_i($signed(jb[JZexp +: ExpBits])),
       .size_x_i(viewport_w_i), .size_y_i(viewport_h_i), .origin_x_i(viewport_x_i), .origin_y_i(viewport_y_i),
       .valid_o(lane_v[l]), .res_o(lane_res[l]), .range_o(lane_rng[l])
     );
   end
+  `undef FXR_VP_I
+  `undef FXR_VP_Q
+  `undef FXR_VP_W
 
   // ---- snaps ---------------------------------------------------------------------------------
   // Flat (Icarus 11 assigns no whole unpacked arrays, Yosys 0.23 reads no 2-D packed ones):
@@ -207,7 +215,7 @@ module fxr_viewport_core #(
       size = viewport_w_i;
       origin = viewport_x_i;
       for (int c = 0; c < Slots; c++) begin
-        if (SlotBits'(c) == slot && c * SnapLanes + u < NumSnaps) begin
+        if (tri_v && SlotBits'(c) == slot && c * SnapLanes + u < NumSnaps) begin
           c_neg = v_neg[(c * SnapLanes + u) / 2][(c * SnapLanes + u) % 2];
           c_sig = v_sig[(c * SnapLanes + u) / 2][(c * SnapLanes + u) % 2];
           c_exp = v_exp[(c * SnapLanes + u) / 2][(c * SnapLanes + u) % 2];
@@ -228,13 +236,18 @@ module fxr_viewport_core #(
   end
   // This slot's snaps merged into the triangle's.
   logic snap_rng_n;
+  // Read only with a triangle in the input register (snap_q, the FIFO's push): evaluated then only.
   always_comb begin
-    snap_rng_n = snap_rng_q && slot != '0;
-    snap_n = snap_q;
-    for (int sj = 0; sj < NumSnaps; sj++) begin
-      if (SlotBits'(sj / SnapLanes) == slot) begin
-        snap_n[sj*CodeBits +: CodeBits] = su_code[sj % SnapLanes];
-        snap_rng_n = snap_rng_n || su_rng[sj % SnapLanes];
+    snap_rng_n = 1'b0;
+    snap_n = '0;
+    if (tri_v) begin
+      snap_rng_n = snap_rng_q && slot != '0;
+      snap_n = snap_q;
+      for (int sj = 0; sj < NumSnaps; sj++) begin
+        if (SlotBits'(sj / SnapLanes) == slot) begin
+          snap_n[sj*CodeBits +: CodeBits] = su_code[sj % SnapLanes];
+          snap_rng_n = snap_rng_n || su_rng[sj % SnapLanes];
+        end
       end
     end
   end
@@ -253,9 +266,11 @@ module fxr_viewport_core #(
   logic                push, pop;
   always_comb begin
     side_in = '0;
-    side_in[SideBits-1 -: PrimBits] = tri_q[InBits-1 -: PrimBits];
-    for (int sj = 0; sj < NumSnaps; sj++) side_in[SideBits-PrimBits-1-sj*CodeBits -: CodeBits] = snap_n[sj*CodeBits +: CodeBits];
-    side_in[0] = snap_rng_n;
+    if (tri_v && last_slot) begin  // read only by the push
+      side_in[SideBits-1 -: PrimBits] = tri_q[InBits-1 -: PrimBits];
+      for (int sj = 0; sj < NumSnaps; sj++) side_in[SideBits-PrimBits-1-sj*CodeBits -: CodeBits] = snap_n[sj*CodeBits +: CodeBits];
+      side_in[0] = snap_rng_n;
+    end
   end
   assign push = adv && tri_v && last_slot;
   assign side_out = fifo_mem[fifo_rp];

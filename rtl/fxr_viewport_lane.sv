@@ -77,18 +77,10 @@ module fxr_viewport_lane #(
   fxr_divide_norm #(.InBits(DBits), .OutBits(DBits), .MsbBits(MsbBits)) u_dn (
     .en_i(valid_i), .x_i(d_sig_i), .sig_o(d_norm), .msb_o(d_msb));
 
-  // The job's kind, sign, zero flag and the quotient's exponent P (zero FLT: the result exponent)
-  // travel with the quotient bits (separate arrays: Icarus 11 cannot write members of struct arrays).
+  // The rest of the pre logic (P, the first remainder) is evaluated in the clocked process that
+  // loads stage 0, only for a valid job.
   logic                    n_zero;
-  logic signed [PBits-1:0] p_in;
-  logic [DBits-1:0]     rem_in;
-  logic [RestBits-1:0]  rest_in;
   assign n_zero = ~|n;
-  assign p_in = n_zero ? PBits'(zexp_i)
-                            : PBits'($signed({1'b0, n_msb})) - PBits'($signed({1'b0, d_msb})) + PBits'(k_i);
-  // rem before the first step is N_norm's top DBits − 1 bits: step 0 then shifts in the next.
-  assign rem_in = DBits'(n_norm[NBits-1 -: DBits-1]);
-  assign rest_in = n_norm[RestBits-1:0];
 
   // ---- the divider: stage 0 holds the pre register, stage t + 1 the result of step t ---------
   // One unpacked array per field, element t the register after step t − 1 (the last stage,
@@ -99,18 +91,23 @@ module fxr_viewport_lane #(
   // Icarus 11, which also does not update continuous assignments from unpacked array words
   // written in other generate scopes, nor write members of struct arrays (docs/references.md).
   // Yosys (mem2reg) makes each element a register: the flip-flops are the flat vectors' bits.
-  // The job's kind, sign, zero flag and the quotient's exponent P (zero FLT: the result exponent)
-  // travel with the quotient bits as one side word {kind, neg, zero, P}.
+  // The job's kind, sign, zero flag and the quotient's exponent P (zero FLT: the result exponent),
+  // the side word {kind, neg, zero, P}, do not travel through the stages: the lane's latency in
+  // enabled clocks is fixed, so the side word is written into a ring at the issue (side_wp counts
+  // the enabled clocks) and read by the post logic QuotBits + 1 enabled clocks later, when the job
+  // is in the last stage (docs/rtl.md, "Co-simulation speed", session 10).
   localparam int RemBits = DBits;  // the remainder stays below d
   localparam int SideBits = 2 + 1 + 1 + PBits;
+  localparam int RingAw = $clog2(QuotBits + 2);
+  localparam int RingDepth = 1 << RingAw;  // > QuotBits + 1: an entry is read before it is rewritten
   logic [QuotBits:0] v_q;
-  (* mem2reg *) logic [SideBits-1:0] side_a [QuotBits];
+  logic [SideBits-1:0] side_ring [RingDepth];
+  logic [RingAw-1:0]   side_wp;
   (* mem2reg *) logic [RemBits-1:0]  rem_a  [QuotBits];
   (* mem2reg *) logic [RestBits-1:0] rest_a [QuotBits];
   (* mem2reg *) logic [QuotBits-1:0] quo_a  [QuotBits];  // element t holds t quotient bits
   (* mem2reg *) logic [DBits-1:0]    d_a    [QuotBits];  // the divisor of steps 0 … QuotBits − 1
-  logic [SideBits-1:0] side_l;  // stage QuotBits
-  logic [RemBits-1:0]  rem_l;
+  logic [RemBits-1:0]  rem_l;  // stage QuotBits
   logic [RestBits-1:0] rest_l;
   logic [QuotBits-1:0] quo_l;
 
@@ -126,8 +123,13 @@ module fxr_viewport_lane #(
   endfunction
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) v_q <= '0;
-    else if (en_i) v_q <= {v_q[QuotBits-1:0], valid_i};
+    if (!rst_ni) begin
+      v_q <= '0;
+      side_wp <= '0;
+    end else if (en_i) begin
+      v_q <= {v_q[QuotBits-1:0], valid_i};
+      side_wp <= side_wp + RingAw'(1);
+    end
   end
   // Blocking assignments in descending step order: each element is read (the register's value)
   // before the step below overwrites it, so this is the shift register of nonblocking
@@ -135,146 +137,147 @@ module fxr_viewport_lane #(
   // update flag, a value and a commit per element and clock: half of the lanes' simulation time).
   // The arrays are read nowhere else (the last stage, read by the post logic, is nonblocking).
   /* verilator lint_off BLKSEQ */
+  // The loop is skipped when no stage holds a job (|v_q: the idle lanes' cost per clock).
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && |v_q[QuotBits-1:0]) begin
       for (int t = QuotBits - 1; t >= 0; t--) begin
         if (v_q[t]) begin
           logic [RemBits:0] st;
           st = div_step(rem_a[t], rest_a[t][RestBits-1], d_a[t]);
           if (t + 1 < QuotBits) begin
-            side_a[t+1] = side_a[t];
             rem_a[t+1] = st[RemBits-1:0];
             rest_a[t+1] = {rest_a[t][RestBits-2:0], 1'b0};
             quo_a[t+1] = {quo_a[t][QuotBits-2:0], st[RemBits]};
             d_a[t+1] = d_a[t];
           end else begin
-            side_l <= side_a[t];
             rem_l <= st[RemBits-1:0];
             rest_l <= {rest_a[t][RestBits-2:0], 1'b0};
             quo_l <= {quo_a[t][QuotBits-2:0], st[RemBits]};
           end
         end
       end
-      if (valid_i) begin
-        side_a[0] = {kind_i, neg_i, n_zero, p_in};
-        rem_a[0] = rem_in;
-        rest_a[0] = rest_in;
-        quo_a[0] = '0;
-        d_a[0] = d_norm;
-      end
+    end
+    if (en_i && valid_i) begin
+      // pre: the quotient's exponent P = msb(N) − msb(d) + k (a zero numerator: zexp); rem before
+      // the first step is N_norm's top DBits − 1 bits (step 0 then shifts in the next).
+      logic signed [PBits-1:0] p_in;
+      p_in = n_zero ? PBits'(zexp_i)
+                    : PBits'($signed({1'b0, n_msb})) - PBits'($signed({1'b0, d_msb})) + PBits'(k_i);
+      rem_a[0] = DBits'(n_norm[NBits-1 -: DBits-1]);
+      rest_a[0] = n_norm[RestBits-1:0];
+      quo_a[0] = '0;
+      d_a[0] = d_norm;
+      side_ring[side_wp] <= {kind_i, neg_i, n_zero, p_in};
     end
   end
   /* verilator lint_on BLKSEQ */
 
   // ---- post ---------------------------------------------------------------------------------
-  logic [1:0]              m_kind;
-  logic                    m_neg, m_zero;
-  logic signed [PBits-1:0] m_p;
-  logic [QuotBits-1:0]     f;
-  logic                    rem_nz;
-  assign {m_kind, m_neg, m_zero, m_p} = side_l;
-  assign f = quo_l;
-  assign rem_nz = (|rem_l) | (|rest_l);
-
-  // Q4 = jam(F·2^(P+3−QuotBits)) for XW / YW / ZD: a right shift by sr = QuotBits − 3 − P ≥ 0.
+  // Evaluated in the clocked process that loads res_o, only with a job in the last stage (blocking
+  // variables read nowhere else: combinational logic in synthesis), so that an idle lane costs a
+  // simulator nothing here (docs/rtl.md, "Co-simulation speed", session 10).
   localparam int SrBits = PBits + 1;
-  logic signed [SrBits-1:0] sr;
-  logic [QuotBits-1:0]      q4, q4_mask;
-  logic [ShBits-1:0]        q4_sh;
-  logic                     q4_all;
-  assign sr = SrBits'(QuotBits - 3) - SrBits'(m_p);
-  assign q4_all = sr >= SrBits'(QuotBits);
-  assign q4_sh = q4_all ? '0 : (sr < 0 ? '0 : ShBits'(sr));
-  assign q4_mask = ~({QuotBits{1'b1}} << q4_sh);
-  logic q4_st, zq_up;
-  assign q4_st = (|(f & q4_mask)) | rem_nz;
-  assign q4 = m_zero ? '0
-                     : q4_all ? QuotBits'(1)  // f' > 0: only the sticky bit is left
-                              : ((f >> q4_sh) | {{(QuotBits - 1){1'b0}}, q4_st});
-
   // XW / YW: v = RNE((4C ± Q4) / 4).
   localparam int CBits = WindowIntBits + 2 + AttrSubBits + 2;  // 4C (signed)
   localparam int XBits = (CBits > QuotBits + 1 ? CBits : QuotBits + 1) + 1;
   localparam logic signed [XBits-1:0] PosMax = (XBits'(1) <<< (PosBits - 1)) - XBits'(1);
   localparam logic signed [XBits-1:0] PosMin = -(XBits'(1) <<< (PosBits - 1));
-  logic signed [XBits-1:0] c4, x4, pos;
-  logic                    pos_up, pos_ovf;
-  always_comb begin
-    if (m_kind == 2'd1) c4 = (XBits'($signed(size_y_i)) + (XBits'(origin_y_i) <<< 1)) <<< (AttrSubBits + 1);
-    else c4 = (XBits'($signed(size_x_i)) + (XBits'(origin_x_i) <<< 1)) <<< (AttrSubBits + 1);
-  end
-  assign x4 = m_neg ? c4 - XBits'(q4) : c4 + XBits'(q4);
-  assign pos_up = x4[1] & (x4[0] | x4[2]);
-  assign pos = (x4 >>> 2) + $signed(XBits'(pos_up));
-  assign pos_ovf = !m_zero && (m_p > PBits'(QuotIntXY));
-
   // ZD: v = RNE(Q4 / 4), saturated.
   localparam int ZBits = ZFracBits + 1;
   localparam logic [QuotBits-1:0] ZOne = QuotBits'(1) << ZFracBits;
-  logic [QuotBits-1:0] zq;
-  logic [ZBits-1:0]    z;
-  assign zq_up = q4[1] & (q4[0] | q4[2]);
-  assign zq = (q4 >> 2) + {{(QuotBits - 1){1'b0}}, zq_up};
-  always_comb begin
-    if (m_zero || m_neg) z = '0;
-    else if (m_p > PBits'(QuotIntZ) || zq > ZOne) z = ZBits'(ZOne);
-    else z = zq[ZBits-1:0];
-  end
-
-  // FLT: RNE to AttrSigBits bits.
-  logic [AttrSigBits-1:0]   top_sig;
-  logic                     g, st, fup;
-  logic [AttrSigBits:0]     inc;
-  logic [AttrSigBits-1:0]   fsig;
-  logic signed [PBits-1:0]  fexp;
-  always_comb begin
-    if (f[QuotBits-1]) begin
-      top_sig = f[QuotBits-1 -: AttrSigBits];
-      g = f[QuotBits-1-AttrSigBits];
-      st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 1 - AttrSigBits)) - QuotBits'(1))));
-      fexp = m_p - PBits'(AttrSigBits - 1);
-    end else begin
-      top_sig = f[QuotBits-2 -: AttrSigBits];
-      g = f[QuotBits-2-AttrSigBits];
-      st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 2 - AttrSigBits)) - QuotBits'(1))));
-      fexp = m_p - PBits'(AttrSigBits);
-    end
-    fup = g & (st | top_sig[0]);
-    inc = {1'b0, top_sig} + (AttrSigBits + 1)'(fup);
-    if (m_zero) begin
-      fsig = '0;
-      fexp = m_p;
-    end else if (inc[AttrSigBits]) begin
-      fsig = {1'b1, {(AttrSigBits - 1){1'b0}}};
-      fexp = fexp + PBits'(1);
-    end else begin
-      fsig = inc[AttrSigBits-1:0];
-    end
-  end
-
-  logic [ResBits-1:0] res;
-  logic               rng;
-  always_comb begin
-    res = '0;
-    rng = 1'b0;
-    unique case (m_kind)
-      2'd0, 2'd1: begin
-        res = ResBits'(pos[PosBits-1:0]);
-        rng = pos_ovf || pos > PosMax || pos < PosMin;
-      end
-      2'd2: res = ResBits'(z);
-      default: res = ResBits'({m_neg, fsig, fexp[ExpBits-1:0]});
-    endcase
-  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) valid_o <= 1'b0;
     else if (en_i) valid_o <= v_q[QuotBits];
   end
+  /* verilator lint_off BLKSEQ */
   always_ff @(posedge clk_i) begin
     if (en_i && v_q[QuotBits]) begin
-      res_o <= res;
-      range_o <= rng;
+      logic [1:0]              m_kind;
+      logic                    m_neg, m_zero;
+      logic signed [PBits-1:0] m_p;
+      logic [QuotBits-1:0]     f;
+      logic                    rem_nz;
+      logic signed [SrBits-1:0] sr;
+      logic [QuotBits-1:0]      q4, q4_mask;
+      logic [ShBits-1:0]        q4_sh;
+      logic                     q4_all, q4_st, zq_up;
+      logic signed [XBits-1:0]  c4, x4, pos;
+      logic                     pos_up, pos_ovf;
+      logic [QuotBits-1:0]      zq;
+      logic [ZBits-1:0]         z;
+      logic [AttrSigBits-1:0]   top_sig;
+      logic                     g, st, fup;
+      logic [AttrSigBits:0]     inc;
+      logic [AttrSigBits-1:0]   fsig;
+      logic signed [PBits-1:0]  fexp;
+      logic [RingAw-1:0]        side_rp;  // the entry written QuotBits + 1 enabled clocks ago
+      side_rp = side_wp - RingAw'(QuotBits + 1);
+      {m_kind, m_neg, m_zero, m_p} = side_ring[side_rp];
+      f = quo_l;
+      rem_nz = (|rem_l) | (|rest_l);
+
+      // Q4 = jam(F·2^(P+3−QuotBits)) for XW / YW / ZD: a right shift by sr = QuotBits − 3 − P ≥ 0.
+      sr = SrBits'(QuotBits - 3) - SrBits'(m_p);
+      q4_all = sr >= SrBits'(QuotBits);
+      q4_sh = q4_all ? '0 : (sr < 0 ? '0 : ShBits'(sr));
+      q4_mask = ~({QuotBits{1'b1}} << q4_sh);
+      q4_st = (|(f & q4_mask)) | rem_nz;
+      q4 = m_zero ? '0
+                  : q4_all ? QuotBits'(1)  // f' > 0: only the sticky bit is left
+                           : ((f >> q4_sh) | {{(QuotBits - 1){1'b0}}, q4_st});
+
+      unique case (m_kind)
+        2'd0, 2'd1: begin
+          // XW / YW: v = RNE((4C ± Q4) / 4).
+          if (m_kind == 2'd1) c4 = (XBits'($signed(size_y_i)) + (XBits'(origin_y_i) <<< 1)) <<< (AttrSubBits + 1);
+          else c4 = (XBits'($signed(size_x_i)) + (XBits'(origin_x_i) <<< 1)) <<< (AttrSubBits + 1);
+          x4 = m_neg ? c4 - XBits'(q4) : c4 + XBits'(q4);
+          pos_up = x4[1] & (x4[0] | x4[2]);
+          pos = (x4 >>> 2) + $signed(XBits'(pos_up));
+          pos_ovf = !m_zero && (m_p > PBits'(QuotIntXY));
+          res_o <= ResBits'(pos[PosBits-1:0]);
+          range_o <= pos_ovf || pos > PosMax || pos < PosMin;
+        end
+        2'd2: begin
+          // ZD: v = RNE(Q4 / 4), saturated.
+          zq_up = q4[1] & (q4[0] | q4[2]);
+          zq = (q4 >> 2) + {{(QuotBits - 1){1'b0}}, zq_up};
+          if (m_zero || m_neg) z = '0;
+          else if (m_p > PBits'(QuotIntZ) || zq > ZOne) z = ZBits'(ZOne);
+          else z = zq[ZBits-1:0];
+          res_o <= ResBits'(z);
+          range_o <= 1'b0;
+        end
+        default: begin
+          // FLT: RNE to AttrSigBits bits.
+          if (f[QuotBits-1]) begin
+            top_sig = f[QuotBits-1 -: AttrSigBits];
+            g = f[QuotBits-1-AttrSigBits];
+            st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 1 - AttrSigBits)) - QuotBits'(1))));
+            fexp = m_p - PBits'(AttrSigBits - 1);
+          end else begin
+            top_sig = f[QuotBits-2 -: AttrSigBits];
+            g = f[QuotBits-2-AttrSigBits];
+            st = rem_nz | (|(f & ((QuotBits'(1) << (QuotBits - 2 - AttrSigBits)) - QuotBits'(1))));
+            fexp = m_p - PBits'(AttrSigBits);
+          end
+          fup = g & (st | top_sig[0]);
+          inc = {1'b0, top_sig} + (AttrSigBits + 1)'(fup);
+          if (m_zero) begin
+            fsig = '0;
+            fexp = m_p;
+          end else if (inc[AttrSigBits]) begin
+            fsig = {1'b1, {(AttrSigBits - 1){1'b0}}};
+            fexp = fexp + PBits'(1);
+          end else begin
+            fsig = inc[AttrSigBits-1:0];
+          end
+          res_o <= ResBits'({m_neg, fsig, fexp[ExpBits-1:0]});
+          range_o <= 1'b0;
+        end
+      endcase
     end
   end
+  /* verilator lint_on BLKSEQ */
 endmodule

@@ -154,6 +154,10 @@ struct TxnOptions {
   uint64_t wave_before = 200, wave_after = 20;
   bool write_wave = true, print = true;
   size_t max_print = 20;
+  // Every n-th clock (0: none) the loop times its body and the DUT's eval() calls with the steady
+  // clock: TxnResult::harness_share, the harness's share of the loop (figures runs only; the
+  // sampled clocks cost a few timer reads each).
+  uint64_t time_eval_every = 0;
 };
 
 // The options of one run: unit, run name, handshake seed and randomness, the rest at defaults.
@@ -175,6 +179,7 @@ struct TxnHook {
   std::function<void()> reset;
   std::function<void(Dut&)> drive;    // before every evaluation of the cycle's inputs (and in reset)
   std::function<void(Dut&)> observe;  // after the cycle's handshakes settled, before the edge
+  std::function<void(Dut&)> finish;   // once after the last clock (the final counter values)
 };
 
 struct TxnMismatch {
@@ -190,6 +195,11 @@ struct TxnResult {
   uint64_t first_in_cycle = 0, last_out_cycle = 0;  // first input transfer, last output transfer
   double seconds = 0;      // wall clock of the simulation loop
   double cpu_seconds = 0;  // CPU time of the process over the loop (cpu_seconds_now(): a shared machine's load aside)
+  // TxnOptions::time_eval_every: of the sampled clocks' loop time, the part outside the DUT's
+  // eval() (driving, sampling, comparing, the hooks, the handshake RNG), the timer reads' own cost
+  // subtracted; −1 when not sampled.
+  double harness_share = -1;
+  uint64_t timed_cycles = 0;
   bool timeout = false, sim_error = false;
   std::map<std::string, uint64_t> classes;
   std::vector<TxnMismatch> mismatches;
@@ -232,9 +242,30 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
   // evaluated together with the next cycle's inputs (nothing in the RTL acts on the falling edge);
   // only between reset clocks, with no inputs in between, is it evaluated on its own (Verilator
   // sees an edge only against the last evaluated value). docs/rtl.md, "Co-simulation speed".
+  // The sampled clocks' timing (TxnOptions::time_eval_every): per sampled clock the loop body's
+  // time and its eval() calls' time, and the number of timer reads in each.
+  using SteadyClock = std::chrono::steady_clock;
+  bool timed = false;
+  double t_eval = 0;
+  int n_evals = 0;
+  struct TimedClock {
+    double loop, eval;
+    int evals;
+  };
+  std::vector<TimedClock> timed_clocks;
+  auto timed_eval = [&] {
+    if (!timed) {
+      dut->eval();
+      return;
+    }
+    const auto a = SteadyClock::now();
+    dut->eval();
+    t_eval += std::chrono::duration<double>(SteadyClock::now() - a).count();
+    ++n_evals;
+  };
   auto tick = [&](bool settle_low) {
     dut->clk_i = 1;
-    dut->eval();
+    timed_eval();
     dump(2 * cycle + 1);
     ++cycle;
     dut->clk_i = 0;
@@ -268,7 +299,14 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
   VecRow got(v.out.lay.size());
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = cpu_seconds_now();
+  SteadyClock::time_point t_body;
   for (;;) {
+    timed = o.time_eval_every && cycle % o.time_eval_every == 0;
+    if (timed) {
+      t_eval = 0;
+      n_evals = 0;
+      t_body = SteadyClock::now();
+    }
     if (next_in < v.in.rows && !offering && cycle >= o.reset_cycles + o.input_delay_cycles) {
       offering = !chance(o.in_gap_pct);
       if (offering) {
@@ -285,7 +323,7 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
     dut->in_valid_i = offering;
     dut->out_ready_i = !chance(o.out_stall_pct);
     hook_drive();
-    dut->eval();
+    timed_eval();
     dump(2 * cycle);
     const bool in_fire = offering && dut->in_ready_o;
     const bool out_fire = dut->out_valid_o && dut->out_ready_i;
@@ -348,12 +386,35 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
                                            " cycles (" + std::to_string(v.out.rows - next_out) + " rows left)"});
       break;
     }
+    if (timed) timed_clocks.push_back({std::chrono::duration<double>(SteadyClock::now() - t_body).count(), t_eval, n_evals});
     if (next_in == v.in.rows && next_out >= v.out.rows && ++idle_after_end > o.drain_cycles) break;
     if (tfp && cycle > trace_last) break;
   }
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   res.cpu_seconds = cpu_seconds_now() - c0;
+  if (!timed_clocks.empty()) {
+    // One timer read's cost, subtracted once per eval() interval and once per read inside the
+    // loop body's interval (two per eval() and about one for the body's own pair). Clocks whose
+    // body took more than 5× the median (the process preempted on a loaded machine) are left out.
+    const int calib = 1000;
+    const auto c0t = SteadyClock::now();
+    for (int i = 0; i < calib; ++i) (void)SteadyClock::now();
+    const double per_read = std::chrono::duration<double>(SteadyClock::now() - c0t).count() / calib;
+    std::vector<double> loops;
+    for (const TimedClock& c : timed_clocks) loops.push_back(c.loop);
+    std::nth_element(loops.begin(), loops.begin() + (long)(loops.size() / 2), loops.end());
+    const double limit = 5 * loops[loops.size() / 2];
+    double loop = 0, evals = 0;
+    for (const TimedClock& c : timed_clocks) {
+      if (c.loop > limit) continue;
+      ++res.timed_cycles;
+      loop += c.loop - per_read * (2 * c.evals + 1);
+      evals += c.eval - per_read * c.evals;
+    }
+    res.harness_share = loop > 0 ? std::max(0.0, (loop - evals) / loop) : -1;
+  }
   res.cycles = cycle;
+  if (hook && hook->finish) hook->finish(*dut);
   if (tfp) tfp->close();
   dut->final();
   return res;

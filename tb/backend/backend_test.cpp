@@ -47,10 +47,11 @@ Draw model_draw(const std::string& name, const fxr::Config& cfg, const fxr::Draw
 }
 
 RtlRun run_rtl(const Draw& d, const SceneStageVectors& v, const Handshake& h, const std::string& run,
-               bool write_wave = true) {
+               bool write_wave = true, uint64_t time_eval_every = 0) {
   fxr::tb::RtlRunOptions<Dut> o;
   o.run = run;
   o.write_wave = write_wave;
+  o.time_eval_every = time_eval_every;
   return fxr::tb::run_rtl<Dut>(d, v, h, o);
 }
 
@@ -69,14 +70,14 @@ void print_figures(const Draw& d, const RtlRun& k) {
   const uint64_t cyc = k.r.last_out_cycle > k.r.first_in_cycle ? k.r.last_out_cycle - k.r.first_in_cycle + 1 : 0;
   std::printf("FIGURES %s: %llu triangles (%llu drawn), %llu spans, %llu fragments generated, %llu passed; %llu cycles "
               "first input to last output: %.3f fragments/clock (generated), %.4f triangles/clock; "
-              "Verilator %.0f cycles/s, %.0f fragments/s; per CPU second %.0f cycles, %.0f fragments\n",
+              "Verilator %.0f cycles/s, %.0f fragments/s; per CPU second %.0f cycles, %.0f fragments%s\n",
               d.name.c_str(), (unsigned long long)d.want[0], (unsigned long long)d.want[1], (unsigned long long)d.want[6],
               (unsigned long long)d.want[7], (unsigned long long)d.want[8], (unsigned long long)cyc,
               cyc ? (double)d.want[7] / (double)cyc : 0.0, cyc ? (double)d.want[0] / (double)cyc : 0.0,
               k.r.seconds > 0 ? (double)k.r.cycles / k.r.seconds : 0.0,
               k.r.seconds > 0 ? (double)d.want[7] / k.r.seconds : 0.0,
               k.r.cpu_seconds > 0 ? (double)k.r.cycles / k.r.cpu_seconds : 0.0,
-              k.r.cpu_seconds > 0 ? (double)d.want[7] / k.r.cpu_seconds : 0.0);
+              k.r.cpu_seconds > 0 ? (double)d.want[7] / k.r.cpu_seconds : 0.0, harness_text(k.r, d.want[7]).c_str());
   std::printf("FIGURES %s: clocks per triangle %.2f, per span %.2f, per generated fragment %.3f; stall clocks:", d.name.c_str(),
               d.want[0] ? (double)cyc / (double)d.want[0] : 0.0, d.want[6] ? (double)cyc / (double)d.want[6] : 0.0,
               d.want[7] ? (double)cyc / (double)d.want[7] : 0.0);
@@ -113,7 +114,7 @@ TEST(Backend, DefaultSceneMatchesTheModel) {
 //   build/tb/rtl_backend_test --gtest_also_run_disabled_tests --gtest_filter='Backend.DISABLED_Figures1024*'
 void figures_1024(const fxr::Scene& sc, const std::string& name) {
   const Draw d = scene_draw(sc, name);
-  const RtlRun k = run_rtl(d, d.v, Handshake{1, 0, 0, 1, 1, 0}, "backend_" + name);
+  const RtlRun k = run_rtl(d, d.v, Handshake{1, 0, 0, 1, 1, 0}, "backend_" + name, true, fxr::tb::kTimeEvalEvery);
   expect_run_matches(d, k, d.name);
   print_figures(d, k);
 }

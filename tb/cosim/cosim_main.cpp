@@ -172,7 +172,8 @@ struct TapChecker {
 
 struct Options {
   std::string scene, out;
-  bool def = false, wave = false;
+  bool def = false, wave = false, no_bunny = false;
+  int width = 0, height = 0;  // 0: the scene's viewport
   uint64_t seed = 1;
   unsigned gaps = 0, stalls = 0, mem_latency = 1;
   std::string inject_model;
@@ -194,7 +195,11 @@ std::string fmt(const char* f, double x) {
 int run(const Options& o) {
   namespace fs = std::filesystem;
   // ---- the scene and the model -----------------------------------------------------------
-  const fxr::Scene sc = o.def ? fxr::default_scene() : fxr::load_scene(o.scene);
+  fxr::SceneOptions so;  // fxraster render's --width / --height / --no-bunny
+  so.width = o.width;
+  so.height = o.height;
+  so.no_optional = o.no_bunny;
+  const fxr::Scene sc = o.def ? fxr::default_scene(so) : fxr::load_scene(o.scene, so);
   // The configuration the RTL was verilated at: the default's raster, recip and div units (the
   // texture address unit and the line rules are not in this RTL).
   std::string field;
@@ -507,6 +512,9 @@ int main(int argc, char** argv) {
   app.add_option("--out", o.out, "output folder (report.md, report.json, speed.*, on mismatch mismatches.csv, first_mismatch.fst)")
       ->required();
   app.add_flag("--wave", o.wave, "dump the whole run to OUT/wave.fst");
+  app.add_flag("--no-bunny", o.no_bunny, "leave out optional meshes (the default scene's bunny), as fxraster render");
+  app.add_option("--width", o.width, "override the viewport width (pixels), as fxraster render")->check(CLI::Range(1, 16384));
+  app.add_option("--height", o.height, "override the viewport height (pixels), as fxraster render")->check(CLI::Range(1, 16384));
   app.add_option("--seed", o.seed, "handshake randomness (gaps, stalls, memory latency)");
   app.add_option("--gaps", o.gaps, "input gaps, percent of clocks (default 0)")->check(CLI::Range(0u, 95u));
   app.add_option("--stalls", o.stalls, "output back-pressure, percent of clocks (default 0)")->check(CLI::Range(0u, 95u));

@@ -50,12 +50,13 @@ inline void print_figures(const Draw& d, const UnitRun& k) {
   const uint64_t cyc = r.last_out_cycle > r.first_in_cycle ? r.last_out_cycle - r.first_in_cycle + 1 : 0;
   std::printf("FIGURES unit %s: %llu primitives, %llu fragments generated, %llu passed; %llu cycles first input to "
               "last output, %.4f fragments/clock (generated); Verilator %.0f cycles/s, %.0f fragments/s; per CPU "
-              "second %.0f cycles, %.0f fragments\n",
+              "second %.0f cycles, %.0f fragments, %.0f primitives%s\n",
               d.name.c_str(), (unsigned long long)d.u.in.rows, (unsigned long long)d.want[7],
               (unsigned long long)d.want[8], (unsigned long long)cyc, cyc ? (double)d.want[7] / (double)cyc : 0.0,
               r.seconds > 0 ? (double)r.cycles / r.seconds : 0.0, r.seconds > 0 ? (double)d.want[7] / r.seconds : 0.0,
               r.cpu_seconds > 0 ? (double)r.cycles / r.cpu_seconds : 0.0,
-              r.cpu_seconds > 0 ? (double)d.want[7] / r.cpu_seconds : 0.0);
+              r.cpu_seconds > 0 ? (double)d.want[7] / r.cpu_seconds : 0.0,
+              r.cpu_seconds > 0 ? (double)d.u.in.rows / r.cpu_seconds : 0.0, harness_text(r, d.want[7]).c_str());
   std::printf("FIGURES unit %s: utilisation (busy / stalled / starved %% of the clocks first input to last output):",
               d.name.c_str());
   for (int i = 0; i < kUnitStages; ++i) {

@@ -88,9 +88,31 @@ UnitRun run_unit(const Draw& d, const SceneStageVectors& v, const Handshake& h, 
     dut.reg_wdata_i = cycle < (uint64_t)kUnitRegs ? (uint32_t)((uint64_t)regs[cycle] & reg_mask) : 0;
     mem.drive(dut);
   };
+  // The counters are registered: read in a clock, they hold the clocks before it. They are read
+  // once at the end (finish), the utilisation also in the clocks that open and close the window
+  // (the first input transfer, the clock after each output transfer): per-clock reads of every
+  // counter were 4 % of the checkerboard's loop (docs/speed.md, "Session 10: co-simulation speed").
+  auto read_util = [&](Dut& dut) {
+    for (int i = 0; i < kUnitStages; ++i)
+      out.util[(size_t)i] = {flat_word(dut.perf_busy_o, i, stat_bits), flat_word(dut.perf_stalled_o, i, stat_bits),
+                             flat_word(dut.perf_starved_o, i, stat_bits)};
+  };
   hook.observe = [&](Dut& dut) {
     ++cycle;
     mem.observe(dut);
+    if (!started && dut.in_valid_i && dut.in_ready_o) {
+      started = true;
+      read_util(dut);
+      util_first = out.util;
+    }
+    if (prev_out) {
+      read_util(dut);
+      util_last = out.util;
+    }
+    prev_out = dut.out_valid_o && dut.out_ready_i;
+    if (ro.observe) ro.observe(dut);
+  };
+  hook.finish = [&](Dut& dut) {
     out.k.stats = {u64(dut.stat_tri_in_o),       u64(dut.stat_tri_drawn_o),      u64(dut.stat_tri_zero_area_o),
                    u64(dut.stat_tri_backface_o), u64(dut.stat_tri_no_samples_o), u64(dut.stat_tri_range_o),
                    u64(dut.stat_spans_o),        u64(dut.stat_frag_generated_o), u64(dut.stat_frag_depth_pass_o),
@@ -103,16 +125,7 @@ UnitRun run_unit(const Draw& d, const SceneStageVectors& v, const Handshake& h, 
                 u64(dut.stat_prims_trivial_accept_o), u64(dut.stat_prims_clipped_o),
                 u64(dut.stat_clip_vertices_created_o), u64(dut.stat_clip_triangles_out_o),
                 u64(dut.stat_prims_culled_outside_o), u64(dut.stat_geom_rejected_range_o)};
-    for (int i = 0; i < kUnitStages; ++i)
-      out.util[(size_t)i] = {flat_word(dut.perf_busy_o, i, stat_bits), flat_word(dut.perf_stalled_o, i, stat_bits),
-                             flat_word(dut.perf_starved_o, i, stat_bits)};
-    if (!started && dut.in_valid_i && dut.in_ready_o) {
-      started = true;
-      util_first = out.util;
-    }
-    if (prev_out) util_last = out.util;
-    prev_out = dut.out_valid_o && dut.out_ready_i;
-    if (ro.observe) ro.observe(dut);
+    read_util(dut);
   };
   TxnOptions o = txn_options("unit", ro.run, h.seed, h.gap, h.stall);
   o.write_wave = ro.write_wave;
@@ -121,6 +134,7 @@ UnitRun run_unit(const Draw& d, const SceneStageVectors& v, const Handshake& h, 
   // none, are out: the counters are read once the unit has drained.
   o.drain_cycles = 20000;
   o.input_delay_cycles = kUnitRegs + 1;
+  o.time_eval_every = ro.time_eval_every;
   out.k.r = ro.simulate ? ro.simulate(v, o, hook) : run_txn<Dut>(v, nullptr, o, &hook);
   for (int i = 0; i < kUnitStages; ++i)
     for (int j = 0; j < 3; ++j) out.util_window[(size_t)i][(size_t)j] = util_last[(size_t)i][(size_t)j] - util_first[(size_t)i][(size_t)j];

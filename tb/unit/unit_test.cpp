@@ -28,10 +28,11 @@ using fxr::tb::expect_match;
 using fxr::tb::print_figures;
 
 UnitRun run(const Draw& d, const fxr::SceneStageVectors& v, const Handshake& h, const std::string& name,
-            bool wave = true) {
+            bool wave = true, uint64_t time_eval_every = 0) {
   fxr::tb::RtlRunOptions<Dut> o;
   o.run = name;
   o.write_wave = wave;
+  o.time_eval_every = time_eval_every;
   return fxr::tb::run_unit<Dut>(d, v, h, o);
 }
 
@@ -49,15 +50,17 @@ TEST(Unit, DefaultSceneMatchesTheModel) {
   expect_match(d, b, "default, gaps / back-pressure / latency 1..12");
 }
 
-// The checkerboard face alone at 1024 x 1024 (about a fragment per clock; docs/rtl.md, "Co-simulation
-// speed"): not run in CI (about 10^6 clocks):
+// The checkerboard face alone at 1024 x 1024 (about a fragment per clock, the unit's fragment rate
+// as Backend.DISABLED_Figures1024Checkerboard measures the back end's; docs/speed.md, "Session 10:
+// co-simulation speed"): clocks, fragments, fragments per CPU second of the simulation loop and the
+// harness's share of it (every 61st clock timed). Not run in CI (about 250,000 clocks):
 //   build/tb/rtl_unit_test --gtest_also_run_disabled_tests --gtest_filter='Unit.DISABLED_Figures1024Checkerboard'
 TEST(Unit, DISABLED_Figures1024Checkerboard) {
   fxr::SceneOptions so;
   so.width = so.height = 1024;
   so.no_optional = true;
   const Draw d = scene_draw(fxr::default_scene(so), "unit_checkerboard_1024");
-  const UnitRun a = run(d, d.u, Handshake{1, 0, 0, 1, 1, 0}, "unit_checkerboard_1024");
+  const UnitRun a = run(d, d.u, Handshake{1, 0, 0, 1, 1, 0}, "unit_checkerboard_1024", true, fxr::tb::kTimeEvalEvery);
   expect_match(d, a, "checkerboard 1024, no gaps");
   print_figures(d, a);
 }
