@@ -311,19 +311,7 @@ class VertexCache {
     ++misses_;
     copy_units<sizeof(uint32_t)>(slot + kKeyOffset, key_bytes(cv), kw_);
     const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_);
-    // The head field by field into the slot (a Head built on the stack and copied whole stalled
-    // on store forwarding); seq stays 0 in a table of one cache.
-    const uint32_t written = epoch_ << 2 | (ok ? kAccepted : kNotAccepted);
-    std::memcpy(slot + offsetof(Head, state), &written, sizeof(written));
-    if (ok) {
-      std::memcpy(slot + offsetof(Head, x), &out.x, sizeof(out.x));
-      std::memcpy(slot + offsetof(Head, y), &out.y, sizeof(out.y));
-      std::memcpy(slot + offsetof(Head, ax), &out.ax, sizeof(out.ax));
-      std::memcpy(slot + offsetof(Head, ay), &out.ay, sizeof(out.ay));
-      std::memcpy(slot + offsetof(Head, z), &out.z, sizeof(out.z));
-      std::memcpy(slot + offsetof(Head, rw), &out.rw, sizeof(out.rw));
-      copy_varyings_to(slot + vw_offset_, out.vw);
-    }
+    write_head(slot, ok, out);  // seq stays 0 in a table of one cache
     return ok;
   }
   // The SetupVertex fields of a slot's head (`h`: the slot, or a copy of it).
@@ -338,11 +326,20 @@ class VertexCache {
 
   // The head and varyings of a slot holding accepted_vertex's answer `ok`, `out` (its key
   // words are written by the caller).
-  void fill(Head& head, bool ok, const SetupVertex& out, unsigned char* slot) const {
-    head.state = epoch_ << 2 | (ok ? kAccepted : kNotAccepted);
+  // A slot's state, head fields and varyings (`h`: the slot, or a copy of it), the one writer of
+  // the layout read_head reads: field by field (a Head built on the stack and copied whole
+  // stalled on store forwarding, docs/speed.md "Session 10: per triangle"). seq is left as it is.
+  void write_head(unsigned char* h, bool ok, const SetupVertex& out) const {
+    const uint32_t state = epoch_ << 2 | (ok ? kAccepted : kNotAccepted);
+    std::memcpy(h + offsetof(Head, state), &state, sizeof(state));
     if (ok) {
-      head.x = out.x, head.y = out.y, head.ax = out.ax, head.ay = out.ay, head.z = out.z, head.rw = out.rw;
-      copy_units<sizeof(FxFloat)>(slot + vw_offset_, out.vw, (size_t)nv_);
+      std::memcpy(h + offsetof(Head, x), &out.x, sizeof(out.x));
+      std::memcpy(h + offsetof(Head, y), &out.y, sizeof(out.y));
+      std::memcpy(h + offsetof(Head, ax), &out.ax, sizeof(out.ax));
+      std::memcpy(h + offsetof(Head, ay), &out.ay, sizeof(out.ay));
+      std::memcpy(h + offsetof(Head, z), &out.z, sizeof(out.z));
+      std::memcpy(h + offsetof(Head, rw), &out.rw, sizeof(out.rw));
+      copy_varyings_to(h + vw_offset_, out.vw);
     }
   }
 
@@ -386,10 +383,9 @@ class VertexCache {
     std::memset(copy, 0, stride_ * kWordBytes);
     unsigned char* c = reinterpret_cast<unsigned char*>(copy);
     std::memcpy(c + kKeyOffset, key_bytes(cv), kw_ * sizeof(uint32_t));
-    Head fresh;
-    fill(fresh, ok, out, c);
-    fresh.seq = seq + 2;
-    std::memcpy(c, &fresh, sizeof(Head));
+    write_head(c, ok, out);
+    const uint32_t next_seq = seq + 2;  // even again: written
+    std::memcpy(c + offsetof(Head, seq), &next_seq, sizeof(next_seq));
     for (size_t k = 1; k < stride_; ++k) __atomic_store_n(slot + k, copy[k], __ATOMIC_RELAXED);
     __atomic_store_n(slot, copy[0], __ATOMIC_RELEASE);
     return ok;
