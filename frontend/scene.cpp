@@ -884,23 +884,6 @@ Scene load_scene(const std::string& path, const SceneOptions& opt) {
   return parse_scene(ss.str(), path, dir_of(path), opt);
 }
 
-Scene default_scene(const SceneOptions& opt) {
-  if (opt.wireframe) {
-    // The wireframe variant (docs/scene-format.md): the face's edges and the bunny's silhouette.
-    json j = json::parse(default_scene_json());
-    j["name"] = j["name"].get<std::string>() + ", wireframe (face edges, bunny silhouette)";
-    j["objects"][0]["wireframe"] = "edges";
-    j["objects"][1]["wireframe"] = "silhouette";
-    j["line_state"] = {{"depth_func", "always"}, {"depth_write", false}, {"color", "#ff3030"}};
-    Scene s = parse_scene(j.dump(), "<default scene --wireframe>", "", opt);
-    s.source = "<default scene --wireframe>";
-    return s;
-  }
-  Scene s = parse_scene(default_scene_json(), "<default scene>", "", opt);
-  s.source = "<default scene>";
-  return s;
-}
-
 }  // namespace fxr
 
 namespace fxr {

@@ -81,8 +81,10 @@ Scene parse_scene(const std::string& text, const std::string& where, const std::
 Scene load_scene(const std::string& path, const SceneOptions& opt = {});
 // The embedded default scene (the checkerboard face at an angle of docs/references.md#seed-000,
 // and the Stanford bunny from glmark2-data when installed; a note says so when it is not).
+// Its name says what was drawn: "… + bunny (glmark2-data)", or "…, without the bunny (…)" and
+// why (frontend/scene_default.cpp).
 Scene default_scene(const SceneOptions& opt = {});
-// The JSON text of the embedded default scene.
+// The JSON text of the embedded default scene (its name: the face's part only).
 const char* default_scene_json();
 
 // ---- pieces exposed for tests ---------------------------------------------------------------
