@@ -7,23 +7,17 @@
 
 #include "analysis/scene_analysis.hpp"
 #include "command.hpp"
+#include "scene_input.hpp"
 
 namespace {
 
 struct Opts {
-  std::string scene, out, config;
-  bool use_default = false, no_bunny = false;
-  int width = 0, height = 0;
+  fxr::app::SceneInput in;
+  std::string out;
 };
 
 int run(const Opts& o) {
-  if (o.scene.empty() == !o.use_default) throw fxr::ConfigError("give exactly one of SCENE or --default");
-  fxr::SceneOptions so;
-  so.width = o.width;
-  so.height = o.height;
-  so.no_optional = o.no_bunny;
-  fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.scene, so);
-  if (!o.config.empty()) fxr::apply_config_file(sc, o.config);
+  const fxr::Scene sc = fxr::app::load_scene_input(o.in, "analyze");
   const fxr::SceneAnalysis a = fxr::analyze_scene(sc);
   const std::string md = fxr::analysis_markdown(a);
   std::cout << md;
@@ -39,13 +33,9 @@ int run(const Opts& o) {
 
 fxr::app::Runner setup(CLI::App& sub) {
   auto o = std::make_shared<Opts>();
-  sub.add_option("scene", o->scene, "scene JSON file (docs/scene-format.md)");
-  sub.add_flag("--default", o->use_default, "the embedded default scene");
-  sub.add_option("--config", o->config, "configuration JSON whose fields override the scene's configuration");
+  fxr::app::add_scene_source(sub, o->in, "the embedded default scene");
   sub.add_option("--out", o->out, "also write analysis.md and analysis.json into this directory");
-  sub.add_flag("--no-bunny", o->no_bunny, "leave out optional meshes (the default scene's bunny)");
-  sub.add_option("--width", o->width, "override the viewport width (pixels)")->check(CLI::Range(1, 16384));
-  sub.add_option("--height", o->height, "override the viewport height (pixels)")->check(CLI::Range(1, 16384));
+  fxr::app::add_scene_overrides(sub, o->in);
   return [o]() { return run(*o); };
 }
 

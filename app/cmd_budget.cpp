@@ -11,6 +11,7 @@
 #include "analysis/budget.hpp"
 #include "analysis/error_stats.hpp"
 #include "command.hpp"
+#include "scene_input.hpp"
 #include "frontend/scene.hpp"
 
 namespace {
@@ -18,25 +19,16 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Opts {
-  std::string scene, out, config;
-  bool use_default = false, no_bunny = false, no_plots = false, quiet = false;
-  int width = 0, height = 0, samples = 3000, threads = 0;
+  fxr::app::SceneInput in;
+  std::string out;
+  bool no_plots = false, quiet = false;
+  int samples = 3000, threads = 0;
 };
 
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
+using fxr::app::quote;
 
 int run(const Opts& o) {
-  if (o.scene.empty() == !o.use_default) throw fxr::ConfigError("give exactly one of SCENE or --default");
-  fxr::SceneOptions so;
-  so.width = o.width;
-  so.height = o.height;
-  so.no_optional = o.no_bunny;
-  fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.scene, so);
-  if (!o.config.empty()) fxr::apply_config_file(sc, o.config);
+  const fxr::Scene sc = fxr::app::load_scene_input(o.in, "budget");
   fxr::BudgetOptions bo;
   bo.samples = o.samples;
   bo.threads = o.threads > 0 ? o.threads : (int)std::max(1u, std::thread::hardware_concurrency());
@@ -82,9 +74,7 @@ int run(const Opts& o) {
 
 fxr::app::Runner setup(CLI::App& sub) {
   auto o = std::make_shared<Opts>();
-  sub.add_option("scene", o->scene, "scene JSON file (docs/scene-format.md)");
-  sub.add_flag("--default", o->use_default, "the embedded default scene");
-  sub.add_option("--config", o->config, "configuration JSON whose fields override the scene's configuration");
+  fxr::app::add_scene_source(sub, o->in, "the embedded default scene");
   sub.add_option("--out", o->out, "output directory: budget.md, budget.json, budget_fragments.csv, PNG plots")
       ->required();
   sub.add_option("--samples", o->samples,
@@ -92,9 +82,7 @@ fxr::app::Runner setup(CLI::App& sub) {
       ->check(CLI::Range(0, 100000000));
   sub.add_option("--threads", o->threads, "worker threads (default: the cores; the output does not depend on it)")
       ->check(CLI::Range(0, 256));
-  sub.add_flag("--no-bunny", o->no_bunny, "leave out optional meshes (the default scene's bunny)");
-  sub.add_option("--width", o->width, "override the viewport width (pixels)")->check(CLI::Range(1, 16384));
-  sub.add_option("--height", o->height, "override the viewport height (pixels)")->check(CLI::Range(1, 16384));
+  fxr::app::add_scene_overrides(sub, o->in);
   sub.add_flag("--no-plots", o->no_plots, "do not call scripts/plot_budget.py");
   sub.add_flag("--quiet", o->quiet, "print nothing on success");
   return [o]() { return run(*o); };

@@ -17,6 +17,7 @@
 #include <sys/wait.h>
 
 #include "command.hpp"
+#include "scene_input.hpp"
 #include "frontend/scene.hpp"
 #include "model/config/arch_config.hpp"
 #include "model/config/json_input.hpp"
@@ -28,17 +29,13 @@ namespace fs = std::filesystem;
 using fxr::cyc::CycleRun;
 
 struct Opts {
-  std::string scene, config, out;
-  bool use_default = false, no_sweep = false, no_plot = false, quiet = false, no_bunny = false, rtl = false;
-  int width = 0, height = 0;
+  fxr::app::SceneInput in;  // its --config also sets the architecture knobs (apply_config below)
+  std::string out;
+  bool no_sweep = false, no_plot = false, quiet = false, rtl = false;
   int bins = 200;
 };
 
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
+using fxr::app::quote;
 
 // The scene's configuration with the fields of F (the model's number formats, unit by unit,
 // as `render --config`), and the knobs of F's unit "arch".
@@ -143,19 +140,16 @@ std::vector<Variant> sweep_variants(const fxr::ArchConfig& base) {
 }
 
 int run(const Opts& o) {
-  if (o.use_default == !o.scene.empty())
-    throw fxr::ConfigError("cycles: give exactly one of SCENE and --default");
+  fxr::app::check_scene_source(o.in, "cycles");
   if (o.bins < 1 || o.bins > 100000) throw fxr::ConfigError("cycles: --bins: " + std::to_string(o.bins) + " is not in 1 … 100000");
   // The RTL runs at its own parameters on the scene as it is: nothing that changes them.
-  if (o.rtl && (!o.config.empty() || o.width || o.height || o.no_bunny))
+  if (o.rtl && (!o.in.config.empty() || o.in.width || o.in.height || o.in.no_bunny))
     throw fxr::ConfigError("cycles: --rtl runs the scene as fxraster cosim does: not with --config, --width, --height or --no-bunny");
-  fxr::SceneOptions so;
-  so.width = o.width;
-  so.height = o.height;
-  so.no_optional = o.no_bunny;
-  fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.scene, so);
+  fxr::app::SceneInput scene_only = o.in;
+  scene_only.config.clear();  // applied below with its unit "arch"
+  fxr::Scene sc = fxr::app::load_scene_input(scene_only, "cycles");
   fxr::ArchConfig arch;
-  if (!o.config.empty()) arch = apply_config(sc, o.config);
+  if (!o.in.config.empty()) arch = apply_config(sc, o.in.config);
   fs::create_directories(o.out);
 
   fxr::cyc::CycleOptions opt;
@@ -168,7 +162,7 @@ int run(const Opts& o) {
   nlohmann::json rtl;
   if (o.rtl) {
     const std::string dir = o.out + "/rtl";
-    std::vector<std::string> args = {o.use_default ? std::string("--default") : o.scene, "--out", dir};
+    std::vector<std::string> args = {o.in.use_default ? std::string("--default") : o.in.scene, "--out", dir};
     const int rc = fxr::app::run_cosim(args);
     if (rc != 0) throw std::runtime_error("cycles --rtl: fxraster cosim exited " + std::to_string(rc) + " (" + dir + "/report.md)");
     const nlohmann::json rep = fxr::read_json_file(dir + "/report.json", "cosim report");
@@ -279,14 +273,11 @@ int run(const Opts& o) {
 
 fxr::app::Runner setup(CLI::App& sub) {
   auto o = std::make_shared<Opts>();
-  sub.add_option("scene", o->scene, "scene JSON file (docs/scene-format.md)");
-  sub.add_flag("--default", o->use_default, "the embedded default scene");
-  sub.add_option("--config", o->config,
-                 "configuration JSON: fields override the scene's; its unit \"arch\" sets the knobs (docs/cycles.md)");
+  fxr::app::add_scene_source(sub, o->in, "the embedded default scene");
+  sub.get_option("--config")
+      ->description("configuration JSON: fields override the scene's; its unit \"arch\" sets the knobs (docs/cycles.md)");
   sub.add_option("--out", o->out, "output directory")->required();
-  sub.add_option("--width", o->width, "override the viewport width");
-  sub.add_option("--height", o->height, "override the viewport height");
-  sub.add_flag("--no-bunny", o->no_bunny, "skip the scene's optional objects");
+  fxr::app::add_scene_overrides(sub, o->in);
   sub.add_option("--bins", o->bins, "timeline bins (default 200)");
   sub.add_flag("--no-sweep", o->no_sweep, "skip the architecture sweep");
   sub.add_flag("--no-plot", o->no_plot, "do not call scripts/plot_cycles.py");

@@ -12,6 +12,7 @@
 #include "analysis/lut_model.hpp"
 #include "analysis/plan.hpp"
 #include "command.hpp"
+#include "scene_input.hpp"
 #include "model/config/config.hpp"
 #include "sc/frame_clocks.hpp"
 
@@ -19,25 +20,19 @@ namespace {
 
 struct Opts {
   std::vector<std::string> scenes;
+  fxr::app::SceneInput in;  // --default, the overrides (the files are `scenes`; --config starts the search)
   std::string out, config, target, cost = "area", lut_table;
-  bool use_default = false, no_bunny = false, no_plots = false, quiet = false;
-  int width = 0, height = 0, samples = 1000, threads = 0;
+  bool no_plots = false, quiet = false;
+  int samples = 1000, threads = 0;
 };
 
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
+using fxr::app::quote;
 
 int run(const Opts& o) {
-  if (o.scenes.empty() && !o.use_default) throw fxr::ConfigError("give at least one SCENE or --default");
-  fxr::SceneOptions so;
-  so.width = o.width;
-  so.height = o.height;
-  so.no_optional = o.no_bunny;
+  if (o.scenes.empty() && !o.in.use_default) throw fxr::ConfigError("give at least one SCENE or --default");
+  const fxr::SceneOptions so = fxr::app::scene_options(o.in);
   std::vector<fxr::Scene> scenes;
-  if (o.use_default) scenes.push_back(fxr::default_scene(so));
+  if (o.in.use_default) scenes.push_back(fxr::default_scene(so));
   for (const std::string& s : o.scenes) scenes.push_back(fxr::load_scene(s, so));
   if (!o.config.empty())
     for (fxr::Scene& s : scenes) fxr::apply_config_file(s, o.config);
@@ -90,7 +85,7 @@ int run(const Opts& o) {
 fxr::app::Runner setup(CLI::App& sub) {
   auto o = std::make_shared<Opts>();
   sub.add_option("scenes", o->scenes, "scene JSON files (docs/scene-format.md)");
-  sub.add_flag("--default", o->use_default, "add the embedded default scene");
+  sub.add_flag("--default", o->in.use_default, "add the embedded default scene");
   sub.add_option("--target", o->target,
                  "error target, e.g. 'u,v <= 1/16 texel; depth <= 1 LSB; image pixels differing from the exact image <= 0'")
       ->required();
@@ -105,9 +100,7 @@ fxr::app::Runner setup(CLI::App& sub) {
   sub.add_option("--samples", o->samples, "fragments per scene and configuration (default 1000)")->check(CLI::Range(1, 10000000));
   sub.add_option("--threads", o->threads, "configurations evaluated in parallel (the result does not depend on it)")
       ->check(CLI::Range(0, 256));
-  sub.add_flag("--no-bunny", o->no_bunny, "leave out optional meshes (the default scene's bunny)");
-  sub.add_option("--width", o->width, "override the viewport width (pixels)")->check(CLI::Range(1, 16384));
-  sub.add_option("--height", o->height, "override the viewport height (pixels)")->check(CLI::Range(1, 16384));
+  fxr::app::add_scene_overrides(sub, o->in);
   sub.add_flag("--no-plots", o->no_plots, "do not call scripts/plot_plan.py");
   sub.add_flag("--quiet", o->quiet, "no progress output");
   return [o]() { return run(*o); };

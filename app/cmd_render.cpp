@@ -7,11 +7,12 @@
 #include <fstream>
 #include <iostream>
 
-#include <unistd.h>
 
 #include "analysis/render_report.hpp"
 #include "command.hpp"
 #include "frontend/scene.hpp"
+#include "out_folder.hpp"
+#include "scene_input.hpp"
 #include "model/config/config.hpp"
 #include "model/config/json_input.hpp"
 
@@ -20,20 +21,18 @@ namespace {
 using nlohmann::json;
 
 struct Opts {
-  std::string scene, out, config;
-  bool use_default = false, wireframe = false, affine = false, no_bunny = false, no_affine_image = false, quiet = false;
-  int width = 0, height = 0, spot_checks = 2000, threads = 1;
+  fxr::app::SceneInput in;
+  std::string out;
+  bool wireframe = false, affine = false, no_affine_image = false, quiet = false;
+  int spot_checks = 2000, threads = 1;
   std::string filter;  // "" (the configuration's tex_addr.filter), nearest, bilinear
 };
 
 namespace fs = std::filesystem;
 
 // ---- the output folder ---------------------------------------------------------------------------
-// A run writes into a temporary folder beside --out and renames it to --out only when every file
-// is written; a failed run also removes the previous run's files from --out, so no output folder
-// is ever mistaken for this run's (docs/reports.md, "Render output"). An existing --out is
-// replaced only when it holds nothing but files `render` writes: a mistyped --out never deletes
-// a user's files.
+// Written beside --out and renamed at the end; a failed run removes the previous run's files; a
+// folder holding other files is never replaced (app/out_folder.hpp; docs/reports.md, "Render output").
 
 // Every file render_with_report writes (analysis/render_report.cpp).
 const char* const kRenderFiles[] = {"image.png",         "reference.png",  "depth.png",      "image_affine.png",
@@ -44,33 +43,6 @@ bool is_render_file(const std::string& name) {
   for (const char* f : kRenderFiles)
     if (name == f) return true;
   return false;
-}
-
-fs::path out_path(const std::string& out) {
-  fs::path p = fs::path(out).lexically_normal();
-  if (!p.has_filename()) p = p.parent_path();  // "dir/" → "dir"
-  return p;
-}
-
-// Throws unless `out` is absent, or a folder holding only render's files.
-void check_replaceable(const fs::path& out) {
-  std::error_code ec;
-  if (!fs::exists(out, ec)) return;
-  if (!fs::is_directory(out, ec)) throw fxr::ConfigError(out.string() + ": --out exists and is not a folder");
-  for (const auto& e : fs::directory_iterator(out, ec))
-    if (!is_render_file(e.path().filename().string()))
-      throw fxr::ConfigError(out.string() + ": refusing to replace this folder: it holds '" +
-                             fxr::cut(e.path().filename().string(), fxr::kMaxExcerptChars) +
-                             "', which render does not write (give a new or an empty --out)");
-  if (ec) throw fxr::ConfigError(out.string() + ": cannot list the folder: " + ec.message());
-}
-
-// Removes a previous run's files from `out` (and the folder when that empties it).
-void remove_previous(const fs::path& out) {
-  std::error_code ec;
-  if (!fs::is_directory(out, ec)) return;
-  for (const char* f : kRenderFiles) fs::remove(out / f, ec);
-  fs::remove(out, ec);  // only succeeds when empty
 }
 
 // PNGs are written by stb_image_write, whose sizes are C ints: the largest image (side by side:
@@ -92,41 +64,21 @@ void check_image_sizes(const fxr::Scene& sc, bool no_affine_image, const std::st
 int run_into(const Opts& o, const fs::path& out);
 
 int run(const Opts& o) {
-  const fs::path out = out_path(o.out);
-  check_replaceable(out);  // before anything: a foreign folder is left untouched
-  const fs::path tmp = out.parent_path() / (out.filename().string() + ".partial-" + std::to_string(getpid()));
-  std::error_code ec;
-  fs::remove_all(tmp, ec);
-  try {
-    const int rc = run_into(o, tmp);
-    remove_previous(out);
-    fs::rename(tmp, out);  // same parent folder: one rename
-    return rc;
-  } catch (...) {
-    fs::remove_all(tmp, ec);
-    remove_previous(out);  // the previous run's files must not pass for this run's
-    throw;
-  }
+  fxr::app::check_scene_source(o.in, "render");  // a usage error: the previous output stays
+  return fxr::app::write_out_folder({"render", is_render_file, ""}, fxr::app::out_path(o.out),
+                                    [&](const fs::path& tmp) { return run_into(o, tmp); });
 }
 
 int run_into(const Opts& o, const fs::path& tmp) {
-  if (o.scene.empty() == !o.use_default)
-    throw std::runtime_error("give exactly one of SCENE or --default");
-  fxr::SceneOptions so;
-  so.width = o.width;
-  so.height = o.height;
-  so.no_optional = o.no_bunny;
-  so.wireframe = o.wireframe;
-  if (o.wireframe && !o.use_default)
+  if (o.wireframe && !o.in.use_default)
     throw fxr::ConfigError("--wireframe selects the default scene's wireframe variant: give it with --default "
                            "(a scene file gives its own \"lines\" objects or mesh \"wireframe\")");
-  fxr::Scene sc = o.use_default ? fxr::default_scene(so) : fxr::load_scene(o.scene, so);
-  if (!o.config.empty()) fxr::apply_config_file(sc, o.config);
+  fxr::Scene sc = fxr::app::load_scene_input(o.in, "render", o.wireframe);
   if (o.affine) sc.state.interp = sc.line_state.interp = fxr::InterpMode::Affine;
   // --filter: the texture filter of the shaded images (tex_addr.filter, docs/texaddr.md).
   if (!o.filter.empty())
     sc.config.tex_addr.filter = o.filter == "bilinear" ? fxr::TexFilter::Bilinear : fxr::TexFilter::Nearest;
-  check_image_sizes(sc, o.no_affine_image, o.use_default ? "<default scene>" : o.scene);
+  check_image_sizes(sc, o.no_affine_image, o.in.use_default ? "<default scene>" : o.in.scene);
   for (const auto& n : sc.notes) std::cerr << "fxraster render: note: " << n << "\n";
 
   fxr::RenderOptions ro;
@@ -154,27 +106,25 @@ int run_into(const Opts& o, const fs::path& tmp) {
 
 fxr::app::Runner setup(CLI::App& sub) {
   auto o = std::make_shared<Opts>();
-  sub.add_option("scene", o->scene, "scene JSON file (docs/scene-format.md)");
-  sub.add_flag("--default", o->use_default,
-               "render the embedded default scene (a checkerboard face at an angle, docs/references.md#seed-000, + the glmark2 bunny)");
-  sub.add_option("--out", o->out, "output directory (created): image.png, reference.png, depth.png, "
-                                  "image_affine.png, side_by_side.png, fragments.csv/.json, stats.json, "
-                                  "report.md/.json")
+  fxr::app::add_scene_source(sub, o->in,
+                             "render the embedded default scene (a checkerboard face at an angle, "
+                             "docs/references.md#seed-000, + the glmark2 bunny)");
+  sub.add_option("--out", o->out, "output directory (created; replaced only when it holds nothing but render's "
+                                  "files): image.png, reference.png, depth.png, image_affine.png (with --affine: "
+                                  "image_perspective.png), side_by_side.png, error_heatmap.png, fragments.csv/.json, "
+                                  "stats.json, report.md/.json")
       ->required();
   sub.add_flag("--wireframe", o->wireframe,
                "with --default: add the wireframe of the checkerboard face and the bunny's silhouette edges as "
                "line segments (docs/lines.md)");
-  sub.add_option("--config", o->config, "configuration JSON whose fields override the scene's configuration");
   sub.add_flag("--affine", o->affine, "interpolate varyings affinely in screen space (the wrong image of docs/references.md#seed-000) "
                                       "for the main image; the extra image is then the perspective one");
   sub.add_option("--filter", o->filter,
                  "texture filter of the shaded images: nearest or bilinear (default: the configuration's "
                  "tex_addr.filter; docs/texaddr.md); the report measures both")
       ->check(CLI::IsMember({"nearest", "bilinear"}));
-  sub.add_flag("--no-bunny", o->no_bunny, "leave out optional meshes (the default scene's bunny)");
   sub.add_flag("--no-affine-image", o->no_affine_image, "do not render the second image in the other interpolation mode");
-  sub.add_option("--width", o->width, "override the viewport width (pixels)")->check(CLI::Range(1, 16384));
-  sub.add_option("--height", o->height, "override the viewport height (pixels)")->check(CLI::Range(1, 16384));
+  fxr::app::add_scene_overrides(sub, o->in);
   sub.add_option("--spot-checks", o->spot_checks, "fragments re-evaluated exactly with GMP (default 2000)")
       ->check(CLI::Range(0, 1000000));
   sub.add_option("--threads", o->threads,

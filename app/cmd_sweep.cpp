@@ -18,10 +18,10 @@
 #include <map>
 #include <memory>
 #include <sstream>
-#include <unistd.h>
 #include <vector>
 
 #include "command.hpp"
+#include "out_folder.hpp"
 #include "model/config/config.hpp"
 #include "model/config/json_input.hpp"
 #include "model/config/validate.hpp"
@@ -71,11 +71,7 @@ int run_shell(const std::string& cmd) {
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
+using fxr::app::quote;
 
 std::string script(const std::string& name) {
   const std::string p = std::string(FXR_SOURCE_DIR) + "/scripts/" + name;
@@ -320,7 +316,7 @@ void add_synthesis(SweepTable& t, const std::string& out) {
   }
 }
 
-// ---- output folder: written beside the target, renamed at the end (as render and vectors) ------
+// ---- output folder: written beside the target, renamed at the end (app/out_folder.hpp) -------
 
 // What a sweep writes into --out (docs/reports.md). synth_cache/ is a cache, not output: it is
 // carried from the previous run into the new one (and back when a run fails).
@@ -333,68 +329,13 @@ bool is_sweep_file(const std::string& name) {
 }
 constexpr const char* kSynthCache = "synth_cache";
 
-fs::path out_path(const std::string& out) {
-  fs::path p = fs::path(out).lexically_normal();
-  if (!p.has_filename()) p = p.parent_path();  // "dir/" → "dir"
-  return p;
-}
-
-// Throws unless `out` is absent, or a folder holding only what sweep writes.
-void check_replaceable(const fs::path& out) {
-  std::error_code ec;
-  if (!fs::exists(out, ec)) return;
-  if (!fs::is_directory(out, ec)) throw fxr::ConfigError(out.string() + ": --out exists and is not a folder");
-  for (const auto& e : fs::directory_iterator(out, ec)) {
-    const std::string n = e.path().filename().string();
-    if (!is_sweep_file(n) && !(n == kSynthCache && e.is_directory()))
-      throw fxr::ConfigError(out.string() + ": refusing to replace this folder: it holds '" +
-                             fxr::cut(n, fxr::kMaxExcerptChars) +
-                             "', which sweep does not write (give a new or an empty --out)");
-  }
-  if (ec) throw fxr::ConfigError(out.string() + ": cannot list the folder: " + ec.message());
-}
-
-// Removes a previous run's files from `out` (and the folder when that empties it); the cache stays.
-void remove_previous(const fs::path& out) {
-  std::error_code ec;
-  if (!fs::is_directory(out, ec)) return;
-  std::vector<fs::path> old;
-  for (const auto& e : fs::directory_iterator(out, ec))
-    if (is_sweep_file(e.path().filename().string())) old.push_back(e.path());
-  for (const auto& p : old) fs::remove(p, ec);
-  fs::remove(out, ec);  // only succeeds when empty
-}
+std::string out_folder(const Opts& o) { return o.out.empty() ? "out/sweep/" + o.unit : o.out; }
 
 int run_into(const Opts& o, const std::string& out);
 
 int run(const Opts& o) {
-  const fs::path out = out_path(o.out.empty() ? "out/sweep/" + o.unit : o.out);
-  check_replaceable(out);  // before anything: a foreign folder is left untouched
-  std::error_code ec;
-  if (!out.parent_path().empty()) {
-    fs::create_directories(out.parent_path(), ec);
-    if (ec) throw fxr::ConfigError(out.parent_path().string() + ": cannot create the folder: " + ec.message());
-  }
-  const fs::path tmp = out.parent_path() / (out.filename().string() + ".partial-" + std::to_string(getpid()));
-  fs::remove_all(tmp, ec);
-  fs::create_directory(tmp, ec);
-  if (ec) throw fxr::ConfigError(tmp.string() + ": cannot create the folder: " + ec.message());
-  const bool had_cache = fs::is_directory(out / kSynthCache, ec);
-  if (had_cache) fs::rename(out / kSynthCache, tmp / kSynthCache);
-  try {
-    const int rc = run_into(o, tmp.string());
-    remove_previous(out);
-    fs::rename(tmp, out);  // same parent folder: one rename
-    return rc;
-  } catch (...) {
-    remove_previous(out);  // the previous run's files must not pass for this run's
-    if (had_cache) {  // the cache goes back where it was (with what this run added to it)
-      fs::create_directories(out, ec);
-      fs::rename(tmp / kSynthCache, out / kSynthCache, ec);
-    }
-    fs::remove_all(tmp, ec);
-    throw;
-  }
+  return fxr::app::write_out_folder({"sweep", is_sweep_file, kSynthCache}, fxr::app::out_path(out_folder(o)),
+                                    [&](const fs::path& tmp) { return run_into(o, tmp.string()); });
 }
 
 int run_into(const Opts& o, const std::string& out) {
@@ -439,7 +380,7 @@ int run_into(const Opts& o, const std::string& out) {
         << "this report: docs/reports.md.";
   if (!plot_note.empty()) intro << "\n\n**" << plot_note << "**";
   fxr::app::write_markdown(t, def.title, intro.str(), error_col, fronts, images, out + "/report.md");
-  const std::string final_out = out_path(o.out.empty() ? "out/sweep/" + o.unit : o.out).string();
+  const std::string final_out = fxr::app::out_path(out_folder(o)).string();
   std::cout << "sweep " << o.unit << ": " << t.rows.size() << " configurations; wrote " << final_out << "/sweep.csv, "
             << final_out << "/report.md" << (images.empty() ? "" : " and plots") << "\n";
   return 0;

@@ -150,19 +150,21 @@ fxr::app::Runner setup(CLI::App& sub) {
   for (const auto& u : fxr::vector_units()) units += (units.empty() ? "" : ", ") + u.name;
   auto* unit = sub.add_option("unit", o->args,
                                "UNIT (" + units + ") to generate, `scene SCENE|--default` to dump a draw at every stage "
-                               "boundary, or `check FILE|DUMP` to validate a vector file or a scene dump")
+                               "boundary, `texaddr SCENE|--default` for the texture address unit's vectors of a "
+                               "scene's fragments, or `check FILE|DUMP` to validate a vector file or a scene dump")
                    ->expected(1, 2);
   auto* list = sub.add_flag("--list", o->list, "print the units that have vectors, one per line, and exit");
   unit->excludes(list);
   sub.add_option("--config", o->config,
-                 "configuration JSON (default: built-in defaults); with check: the manifest must match it");
-  sub.add_option("--seed", o->seed, "seed of the random cases (mt19937_64)");
-  sub.add_option("--count", o->count, "number of random cases (after the directed ones)");
-  sub.add_option("--out", o->out, "output folder: writes OUT/UNIT.hex and OUT/UNIT.json");
+                 "configuration JSON (default: built-in defaults; scene, texaddr: its fields override the scene's); with "
+                 "check: the manifest must match it");
+  sub.add_option("--seed", o->seed, "seed of the random cases (mt19937_64; default 1)");
+  sub.add_option("--count", o->count, "number of random cases (after the directed ones; default 1000)");
+  sub.add_option("--out", o->out, "output folder (default: the current one): writes OUT/UNIT.hex and OUT/UNIT.json; scene: the dump");
   sub.add_flag("--exhaustive", o->exhaustive, "sweep the whole input domain instead of random cases");
   sub.add_flag("--no-recompute", o->no_recompute, "check: validate the format only, do not rerun the model");
   sub.add_flag("--default", o->use_default, "scene, texaddr: the embedded default scene");
-  sub.add_flag("--no-bunny", o->no_bunny, "scene: skip the scene's optional objects");
+  sub.add_flag("--no-bunny", o->no_bunny, "scene, texaddr: leave out optional meshes (the default scene's bunny)");
   sub.add_option("--max-fragments", o->max_fragments,
                  "texaddr SCENE|--default: at most N fragments, every k-th of the draw (default: all)");
   sub.add_flag("--wireframe", o->wireframe,
@@ -175,8 +177,8 @@ fxr::app::Runner setup(CLI::App& sub) {
                  "scene: write only these stages' files (comma-separated names, e.g. setup,traverse,interp,depth,divide; "
                  "default: every stage)")
       ->delimiter(',');
-  sub.add_option("--width", o->width, "scene: viewport width (overrides the scene's)")->check(CLI::Range(1, 16384));
-  sub.add_option("--height", o->height, "scene: viewport height (overrides the scene's)")->check(CLI::Range(1, 16384));
+  sub.add_option("--width", o->width, "scene, texaddr: viewport width (overrides the scene's)")->check(CLI::Range(1, 16384));
+  sub.add_option("--height", o->height, "scene, texaddr: viewport height (overrides the scene's)")->check(CLI::Range(1, 16384));
   sub.footer(
       "Directed corner cases come first, then --count random cases or the --exhaustive sweep.\n"
       "Every line is one hex word ($readmemh); the manifest names the fields (docs/vectors.md).\n"

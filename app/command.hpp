@@ -44,4 +44,7 @@ std::string cosim_binary();
 void write_file_if_changed(const std::string& path, const std::string& text);
 int run_cosim(const std::vector<std::string>& arguments);
 
+// `s` as one word of a /bin/sh command line: in single quotes, each ' written '\''.
+std::string quote(const std::string& s);
+
 }  // namespace fxr::app

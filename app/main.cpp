@@ -47,6 +47,12 @@ void write_file_if_changed(const std::string& path, const std::string& text) {
   if (!out) throw fxr::ConfigError(path + ": write failed");
 }
 
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
 }  // namespace fxr::app
 
 int main(int argc, char** argv) {

@@ -19,6 +19,12 @@ TEST(CliUsage, UsageErrorsExit2NamingTheOption) {
       {"render --default --out x --no-such-flag", "--no-such-flag"},  // an unknown option
       {"render --default --out x --width 0", "--width"},        // a value out of range
       {"render --default --out x --threads many", "--threads"},  // not a number
+      {"render --out x", "--default"},                            // neither SCENE nor --default
+      {"render s.json --default --out x", "--default"},           // both
+      {"analyze", "--default"},                                   // the same check in every
+      {"budget --out x", "--default"},                            // subcommand reading a scene
+      {"cycles --out x", "--default"},                            // (app/scene_input.hpp)
+      {"cycles --default --out x --width 0", "--width"},         // the same ranges too
       {"no-such-command", "no-such-command"},                    // an unknown subcommand
       {"", "subcommand"},                                        // no subcommand
   };
