@@ -26,7 +26,22 @@ PixelRect draw_rect(const DrawState& st) {
 static int64_t floor_shift(int64_t a, int s) { return a >> s; }
 static int64_t ceil_shift(int64_t a, int s) { return -((-a) >> s); }
 
+PixelRect setup_rect(const Config& cfg, const DrawState& st) {
+  PixelRect dr = draw_rect(st);
+  const int wlim = 1 << (cfg.raster.window_int_bits - 1);
+  dr.x0 = std::max(dr.x0, -wlim);
+  dr.y0 = std::max(dr.y0, -wlim);
+  dr.x1 = std::min(dr.x1, wlim - 1);
+  dr.y1 = std::min(dr.y1, wlim - 1);
+  return dr;
+}
+
 SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const SetupTriangle& tri, TriSetup& out) {
+  return setup_triangle(cfg, st, setup_rect(cfg, st), tri, out);
+}
+
+SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const PixelRect& dr, const SetupTriangle& tri,
+                            TriSetup& out) {
   const RasterConfig& rc = cfg.raster;
   const int g = grid_bits(rc);
   const int up = g - rc.subpixel_bits;  // 1 when subpixel_bits == 0 (exact doubling), else 0
@@ -73,14 +88,7 @@ SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const SetupT
   const int64_t h = (int64_t)1 << (g - 1);
   const int64_t xmin = std::min({x[0], x[1], x[2]}), xmax = std::max({x[0], x[1], x[2]});
   const int64_t ymin = std::min({y[0], y[1], y[2]}), ymax = std::max({y[0], y[1], y[2]});
-  PixelRect dr = draw_rect(st);
-  // Pixels outside the window coordinate range are never candidates (keeps every evaluated
-  // edge value within edge_value_bits).
-  const int wlim = 1 << (rc.window_int_bits - 1);
-  dr.x0 = std::max(dr.x0, -wlim);
-  dr.y0 = std::max(dr.y0, -wlim);
-  dr.x1 = std::min(dr.x1, wlim - 1);
-  dr.y1 = std::min(dr.y1, wlim - 1);
+  // dr = setup_rect: the draw rectangle within the window coordinate range.
   const int64_t bx0 = std::max<int64_t>(ceil_shift(xmin - h, g), dr.x0);
   const int64_t bx1 = std::min<int64_t>(floor_shift(xmax - h, g), dr.x1);
   const int64_t by0 = std::max<int64_t>(ceil_shift(ymin - h, g), dr.y0);

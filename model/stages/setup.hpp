@@ -166,6 +166,16 @@ PixelRect draw_rect(const DrawState& st);
 //   CulledNoSamples. Otherwise Ok and `out` filled. All arithmetic exact (int64).
 SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const SetupTriangle& tri, TriSetup& out);
 
+// The pixels any triangle of a draw may have as candidates: draw_rect(st) ∩ the window
+// coordinate range ±2^(window_int_bits − 1) (a pixel outside it is never a candidate, which keeps
+// every evaluated edge value within edge_value_bits). A function of the draw only.
+PixelRect setup_rect(const Config& cfg, const DrawState& st);
+// Contract: setup_triangle(cfg, st, tri, out) with rect = setup_rect(cfg, st) formed once per
+// draw by the caller (SetupStage: it was formed per triangle, docs/speed.md "Session 11: per
+// triangle").
+SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const PixelRect& rect, const SetupTriangle& tri,
+                            TriSetup& out);
+
 // ---- plane equations for z, 1/w and v/w (docs/pipeline.md, stages 7 and 8) -----------------
 
 // P(i, j) = c + i·dx + j·dy over pixel indices (exact; widths checked by validate(), model/config/validate.hpp).
@@ -360,12 +370,12 @@ class SetupStage {
 
   // with_varyings false: the 1/w and v/w planes are not built (nothing downstream divides).
   SetupStage(const Config& cfg, const DrawState& st, bool with_varyings = true)
-      : cfg_(cfg), st_(st), varyings_(with_varyings && st.num_varyings > 0) {}
+      : cfg_(cfg), st_(st), varyings_(with_varyings && st.num_varyings > 0), rect_(setup_rect(cfg, st)) {}
 
   // 1 → 0..1: the triangle's equations, or why it is not drawn.
   template <class Emit>
   SetupOutcome step(const In& in, Emit&& emit) {
-    const SetupOutcome o = setup_triangle(cfg_, st_, in, out_.edges);
+    const SetupOutcome o = setup_triangle(cfg_, st_, rect_, in, out_.edges);
     if (o != SetupOutcome::Ok) return o;
     out_.prim = in.prim;
     out_.serial = ++serial_;
@@ -385,6 +395,7 @@ class SetupStage {
   const Config& cfg_;
   const DrawState& st_;
   bool varyings_;
+  PixelRect rect_;  // setup_rect(cfg_, st_): per draw
   TriangleEquations out_;
   uint64_t serial_ = setup_serial_block();  // the last serial emitted
 };

@@ -160,6 +160,14 @@ ProjectStatus project_vertex(const Config& cfg, const DrawState& st, const ClipV
 
 ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx& v, const FxFloat& r,
                           SetupVertex& out) {
+  const ProjectStatus s = snap_vertex_active(cfg, st, v, r, out);
+  if (s == ProjectStatus::Ok)
+    for (int k = std::max(st.num_varyings, 0); k < kMaxVaryings; ++k) out.vw[k] = FxFloat{};
+  return s;
+}
+
+ProjectStatus snap_vertex_active(const Config& cfg, const DrawState& st, const ClipVtx& v, const FxFloat& r,
+                                 SetupVertex& out) {
   const RasterConfig& rc = cfg.raster;
   // Perspective divide as exact products (no rounding here).
   const FxProd xn = mul_exact(v.p[0], r), yn = mul_exact(v.p[1], r), zn = mul_exact(v.p[2], r);
@@ -188,7 +196,6 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
       if (st.interp == InterpMode::Affine) out.vw[k] = normalize_fx(v.v[k], rc.attr_sig_bits, Round::HalfEven);
       else quotient(v.v[k], out.vw[k]);
     }
-    for (int k = st.num_varyings; k < kMaxVaryings; ++k) out.vw[k] = FxFloat{};
     return ProjectStatus::Ok;
   }
   out.ax = out.x;
@@ -204,7 +211,6 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
       out.vw[k] = round_prod(mul_exact(v.v[k], r), rc.varying_sig_bits);
     }
   }
-  for (int k = st.num_varyings; k < kMaxVaryings; ++k) out.vw[k] = FxFloat{};
   return ProjectStatus::Ok;
 }
 

@@ -79,6 +79,12 @@ ProjectStatus project_vertex(const Config& cfg, const DrawState& st, const ClipV
 // project_vertex after the reciprocal): Ok or Range. `out` is complete only for Ok.
 ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx& v, const FxFloat& r,
                           SetupVertex& out);
+// Contract: snap_vertex without its zero fill of the varyings past st.num_varyings: out.vw[k],
+// k ≥ num_varyings, are left as they are (the vertex cache, whose triangle keeps them zero from
+// its construction: model/unit/vertex_cache.hpp; the fill was 336 bytes per computed vertex at
+// 2 varyings, docs/speed.md "Session 11: per triangle"). Otherwise snap_vertex's.
+ProjectStatus snap_vertex_active(const Config& cfg, const DrawState& st, const ClipVtx& v, const FxFloat& r,
+                                 SetupVertex& out);
 
 // ---- the stage ------------------------------------------------------------------------------
 

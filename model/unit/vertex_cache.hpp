@@ -15,8 +15,14 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <new>
 #include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include "model/config/config.hpp"
 #include "model/stages/clip.hpp"
@@ -48,7 +54,9 @@ inline constexpr size_t kVertexCachePrefetchAhead = 2;
 // Contract: true when `in`, as a vertex of a triangle whose three vertices all return true,
 // passes stages 1–4 unchanged by the clipper: positions finite, no active varying replaced,
 // strictly inside no clip plane's outside (outcode 0), a reciprocal without error, a snapped
-// position in range; `out` is then its SetupVertex (varyings past nv zero, as snap_vertex).
+// position in range; `out` is then its SetupVertex but for the varyings past nv, which are not
+// written (snap_vertex_active: the caller keeps them zero, as snap_vertex writes them; a
+// 336-byte fill per vertex computed at 2 varyings, docs/speed.md "Session 11: per triangle").
 // `v`: scratch storage, any contents (its members past the draw's varyings are not read: the
 // caller's one ClipVtx saves a 504-byte zero fill per vertex computed).
 inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardBand& gb, const ClipVertex& in,
@@ -57,7 +65,7 @@ inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardB
   convert_vertex(in, st.num_varyings, v, nan, inf, replaced);
   if (nan || inf || replaced || outcode(gb, v) != 0) return false;
   FxFloat r;
-  return recip_vertex(cfg.recip, v, r) && snap_vertex(cfg, st, v, r, out) == ProjectStatus::Ok;
+  return recip_vertex(cfg.recip, v, r) && snap_vertex_active(cfg, st, v, r, out) == ProjectStatus::Ok;
 }
 inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardBand& gb, const ClipVertex& in,
                             SetupVertex& out) {
@@ -72,6 +80,94 @@ class VertexCache;
 inline constexpr size_t kVertexTableWordBytes = sizeof(uint64_t);
 constexpr size_t vertex_table_words(size_t bytes) { return (bytes + kVertexTableWordBytes - 1) / kVertexTableWordBytes; }
 
+// A slot's state keeps 2 bits beside its epoch (VertexCache's kAccepted / kNotAccepted): the
+// epochs of a table kept from draw to draw run up to this, then its words are cleared.
+inline constexpr uint32_t kVertexTableMaxEpoch = (uint32_t{1} << 30) - 1;
+
+// The words of a vertex table, zero when (re)allocated, on 2 MB pages where the system gives
+// them: Linux's transparent huge pages asked for by madvise (the mode this machine runs), a
+// hint that leaves 4 KB pages where it is refused. The table is read at random (9.4 MB at 2
+// varyings): on 4 KB pages nearly every slot prefetch missed the TLB, and the page walk held the
+// prefetch instruction (40 % of the inlined hit path's samples; docs/speed.md "Session 11: per
+// triangle"). Move-only.
+class VertexTableWords {
+ public:
+  // 2 MB: the x86-64 huge page.
+  static constexpr size_t kHugePageBytes = size_t{2} << 20;
+
+  VertexTableWords() = default;
+  VertexTableWords(const VertexTableWords&) = delete;
+  VertexTableWords& operator=(const VertexTableWords&) = delete;
+  VertexTableWords(VertexTableWords&& o) noexcept : base_(o.base_), map_(o.map_), words_(o.words_), n_(o.n_) {
+    o.base_ = nullptr, o.map_ = 0, o.words_ = nullptr, o.n_ = 0;
+  }
+  ~VertexTableWords() { release(); }
+
+  // Contract: the table is n words, all zero (what it held is gone).
+  void assign_zero(size_t n) {
+    if (n == n_) {
+      if (n) std::memset(words_, 0, n * kVertexTableWordBytes);
+      return;
+    }
+    release();
+    if (n) allocate(n);
+  }
+  uint64_t* data() const { return words_; }
+  size_t size() const { return n_; }
+
+ private:
+  void allocate(size_t n) {
+    const size_t bytes = n * kVertexTableWordBytes;
+#if defined(__linux__)
+    // Anonymous memory is zero. Mapped with one huge page to spare, so that the words start on a
+    // 2 MB boundary and every 2 MB of them can be one page.
+    const size_t rounded = (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+    const size_t map = rounded + kHugePageBytes;
+    void* p = mmap(nullptr, map, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+    const uintptr_t a = (reinterpret_cast<uintptr_t>(p) + kHugePageBytes - 1) & ~(uintptr_t)(kHugePageBytes - 1);
+    madvise(reinterpret_cast<void*>(a), rounded, MADV_HUGEPAGE);  // a hint: its failure changes nothing
+    base_ = p, map_ = map;
+    words_ = reinterpret_cast<uint64_t*>(a);
+#else
+    base_ = std::calloc(n, kVertexTableWordBytes);
+    if (!base_) throw std::bad_alloc();
+    words_ = static_cast<uint64_t*>(base_);
+#endif
+    n_ = n;
+  }
+  void release() {
+#if defined(__linux__)
+    if (base_) munmap(base_, map_);
+#else
+    std::free(base_);
+#endif
+    base_ = nullptr, map_ = 0, words_ = nullptr, n_ = 0;
+  }
+  void* base_ = nullptr;
+  size_t map_ = 0;
+  uint64_t* words_ = nullptr;
+  size_t n_ = 0;
+};
+
+// The table a VertexCache that has no shared table uses from draw to draw on its thread (one per
+// thread, lent to one cache at a time: a second cache alive on the thread allocates its own). A
+// new epoch per draw empties it where a table allocated and zero-filled per draw cost 2.2 % of
+// the bunny's v2 profile (std::vector's fill) plus its page faults (docs/speed.md "Session 11:
+// per triangle"). Its words are cleared when the slot layout changes or the epochs wrap. It keeps
+// up to kVertexCacheBytes per thread that drew a mesh until the thread ends.
+struct KeptVertexTable {
+  VertexTableWords words;
+  size_t stride = 0;  // the slot layout of the words (VertexCache::layout), 0: none yet
+  int bits = -1;
+  uint32_t epoch = 0;  // the last draw's
+  bool lent = false;   // a cache uses it
+};
+inline KeptVertexTable& kept_vertex_table() {
+  thread_local KeptVertexTable t;
+  return t;
+}
+
 // A table of vertex-cache slots that several VertexCaches share (VertexCache::share: the threads
 // of model/unit/threads.cpp, one cache object each), kept from draw to draw. begin() before each
 // draw empties it: a new epoch, written into every slot filled during the draw, makes the slots
@@ -81,8 +177,8 @@ class SharedVertexTable {
  public:
   void begin(int num_varyings) {
     const size_t words = kVertexCacheBytes / kVertexTableWordBytes;
-    if (words_.size() != words || nv_ != num_varyings || epoch_ == kMaxEpoch) {
-      words_.assign(words, 0);
+    if (words_.size() != words || nv_ != num_varyings || epoch_ == kVertexTableMaxEpoch) {
+      words_.assign_zero(words);
       epoch_ = 0;
       nv_ = num_varyings;
     }
@@ -91,8 +187,7 @@ class SharedVertexTable {
 
  private:
   friend class VertexCache;
-  static constexpr uint32_t kMaxEpoch = (uint32_t{1} << 30) - 1;  // a slot's state keeps 2 bits beside it
-  std::vector<uint64_t> words_;
+  VertexTableWords words_;
   int nv_ = -1;
   uint32_t epoch_ = 0;
 };
@@ -109,8 +204,8 @@ class VertexCache {
         usable_(gb_.valid && nv_ >= 0 && nv_ <= kMaxVaryings), min_prims_(min_prims), bits_(max_slot_bits) {}
 
   // Contract: true when all three vertices of `in` are accepted vertices (accepted_vertex);
-  // `out` is then the triangle stages 1–4 emit for it (prim set; the varyings past nv are only
-  // ever written with zero, as snap_vertex does: keep `out` from a default SetupTriangle).
+  // `out` is then the triangle stages 1–4 emit for it (prim set; the varyings past nv are never
+  // written: keep `out` from a default SetupTriangle, whose zeros are what snap_vertex writes).
   // false: nothing is known (`out` may be partly written), the caller runs the full chain.
   // Counts hits and misses per vertex looked up.
   bool triangle(const InputTriangle& in, SetupTriangle& out) { return triangle(in.tri, in.prim, out); }
@@ -163,6 +258,7 @@ class VertexCache {
     if (!usable_ || table.nv_ != nv_) return;  // (a table begun for another draw: not shared)
     layout(table.words_.size() * kVertexTableWordBytes);
     forget_prefetched();
+    kept_.release();
     table_ = table.words_.data();
     epoch_ = table.epoch_;
     shared_ = true;
@@ -170,9 +266,12 @@ class VertexCache {
 
   uint64_t hits() const { return hits_; }
   uint64_t misses() const { return misses_; }
+  // True when this cache looks up its thread's KeptVertexTable (false: none yet, its own table,
+  // or a shared one). For the tests, which run a kept table against an own one.
+  bool uses_kept_table() const { return kept_.table != nullptr; }
 
  private:
-  // A slot's state: epoch · 4 + kAccepted / kNotAccepted (epoch 0 unless shared), or kEmpty.
+  // A slot's state: epoch · 4 + kAccepted / kNotAccepted (epoch 0 in a table of its own), or kEmpty.
   enum : uint32_t { kEmpty = 0, kAccepted = 1, kNotAccepted = 2 };
   // A slot, contiguous (one or two adjacent cache lines at 2 varyings): the head, then the key
   // words, then the varyings. The head's first word holds the state and the sequence number of
@@ -201,12 +300,41 @@ class VertexCache {
     stride_ = round_up_to_word(vw_offset_ + (size_t)nv_ * sizeof(FxFloat)) / kWordBytes;  // in words
     while (bits_ > 8 && ((stride_ * kWordBytes) << bits_) > bytes) --bits_;
   }
+  // The table of a cache without a shared one: its thread's KeptVertexTable at a new epoch (its
+  // slots of earlier draws read as empty: filled() compares the epoch), or, when another cache
+  // of the thread holds that, a table of its own (zero: state kEmpty, epoch 0).
   void allocate() {
     layout(kVertexCacheBytes);
-    buf_.assign(stride_ << bits_, 0);  // state 0 = kEmpty
     forget_prefetched();
+    const size_t words = stride_ << bits_;
+    KeptVertexTable& k = kept_vertex_table();
+    if (!k.lent) {
+      if (k.words.size() != words || k.stride != stride_ || k.bits != bits_ || k.epoch == kVertexTableMaxEpoch) {
+        k.words.assign_zero(words);
+        k.stride = stride_, k.bits = bits_, k.epoch = 0;
+      }
+      epoch_ = ++k.epoch;
+      k.lent = true;
+      kept_.table = &k;
+      table_ = k.words.data();
+      return;
+    }
+    buf_.assign_zero(words);
     table_ = buf_.data();
   }
+  // The kept table lent to this cache (released when the cache ends or shares a table). Move-only.
+  struct KeptLease {
+    KeptVertexTable* table = nullptr;
+    KeptLease() = default;
+    KeptLease(const KeptLease&) = delete;
+    KeptLease& operator=(const KeptLease&) = delete;
+    KeptLease(KeptLease&& o) noexcept : table(o.table) { o.table = nullptr; }
+    ~KeptLease() { release(); }
+    void release() {
+      if (table) table->lent = false;
+      table = nullptr;
+    }
+  };
   bool filled(uint32_t state) const { return state != kEmpty && state >> 2 == epoch_; }
   // A vertex's key words are its float32 bits in place: pos[0 … 3], then var[0 … nv) (the
   // words past 4 + nv_ are never read). Neither compared nor hashed through a copy (an 80-byte
@@ -414,7 +542,8 @@ class VertexCache {
   uint64_t prims_ = 0, hits_ = 0, misses_ = 0;
   int bits_;
   size_t kw_ = 4, vw_offset_ = 0, stride_ = 0;
-  std::vector<uint64_t> buf_;  // the table, unless shared
+  VertexTableWords buf_;  // the table, when neither shared nor the thread's kept one
+  KeptLease kept_;
   uint64_t* table_ = nullptr;
   uint32_t epoch_ = 0;
   bool shared_ = false;

@@ -421,6 +421,58 @@ TEST(Shortcut, VertexCachePrefetchedSlotsAreOnlyHints) {
   }
 }
 
+// The table a cache keeps on its thread from draw to draw (KeptVertexTable, docs/speed.md
+// "Session 11: per triangle"): a new epoch per draw instead of a zero-filled table. Draw after
+// draw on one thread — the viewport moved (the same keys, other answers), the varying count
+// changed (another slot layout), the same draw twice (the same keys and answers, an older
+// epoch) — a cache on the kept table gives every answer and counts every hit and miss as a cache
+// on a table of its own (the second cache alive on the thread gets one), and every triangle it
+// answers is the full chain's (a tap). A moved cache keeps the table; the next draw's takes it.
+TEST(Shortcut, VertexCacheKeptTableAnswersAsAFreshTable) {
+  std::mt19937_64 rng(0x5c06);
+  const Config cfg;
+  const std::vector<ClipTriangle> tris = grid_mesh(rng, 40, 3, 0.8);
+  const DrawState a = state(200, 150, 0, 0, 2), moved = state(200, 150, -37, 11, 2), none = state(200, 150, 0, 0, 0),
+                  three = state(200, 150, 0, 0, 3);
+  for (const DrawState* st : {&a, &moved, &none, &three, &a, &a}) {
+    VertexCache kept(cfg, *st, kVertexCacheMaxSlotBits, 0), own(cfg, *st, kVertexCacheMaxSlotBits, 0);
+    FullPathTap ft;
+    GeometryChain<FullPathTap> full(cfg, *st, ft);
+    uint64_t answered = 0;
+    for (size_t p = 0; p < tris.size(); ++p) {
+      SetupTriangle x, y;
+      const bool rx = kept.triangle(tris[p], (uint32_t)p, x), ry = own.triangle(tris[p], (uint32_t)p, y);
+      ASSERT_EQ(rx, ry) << "primitive " << p;
+      if (!rx) continue;
+      ++answered;
+      ASSERT_TRUE(same_setup(x, y)) << "primitive " << p;
+      InputTriangle in;
+      in.prim = (uint32_t)p;
+      in.tri = tris[p];
+      std::vector<SetupTriangle> want;
+      RasterStats s;
+      ASSERT_EQ(full.run(in, want, s), GeomOutcome::Emitted) << "primitive " << p;
+      ASSERT_EQ(want.size(), 1u);
+      ASSERT_TRUE(same_setup(x, want[0])) << "primitive " << p;
+    }
+    ASSERT_TRUE(kept.uses_kept_table());
+    ASSERT_FALSE(own.uses_kept_table());
+    EXPECT_EQ(kept.hits(), own.hits());
+    EXPECT_EQ(kept.misses(), own.misses());
+    EXPECT_GT(kept.hits(), 1000u);
+    EXPECT_GT(kept.misses(), 1000u);
+    EXPECT_GT(answered, 1000u);
+    // Moved: the table goes with the cache, which answers on.
+    VertexCache m(std::move(kept));
+    EXPECT_TRUE(m.uses_kept_table());
+    for (size_t p = 0; p < tris.size(); p += 7) {
+      SetupTriangle x, y;
+      ASSERT_EQ(m.triangle(tris[p], (uint32_t)p, x), own.triangle(tris[p], (uint32_t)p, y)) << "primitive " << p;
+    }
+    EXPECT_EQ(m.hits(), own.hits());
+  }
+}
+
 namespace {
 
 // What the stages do when nothing needs a varying: setup's planes, the samples' N and D, the
