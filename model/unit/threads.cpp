@@ -40,11 +40,14 @@ inline void cpu_relax() {
 // that ended while polling, halved (down to kSpinMin) after one that had to sleep — on a loaded
 // machine, where the thread waited for is often descheduled, polling soon stops costing CPU.
 constexpr std::chrono::nanoseconds kSpinMax{100000}, kSpinMin{1000};
+// Polls between two reads of the steady clock (the deadline check) while polling.
+constexpr unsigned kPollsPerClockRead = 64;
 
-// Returns once ready() holds: polls, then sleeps on `cv` (whoever makes ready() true does so
-// holding `m`, then notifies `cv`).
-template <class Ready>
-void spin_then_wait(std::mutex& m, std::condition_variable& cv, Ready&& ready) {
+// The one waiting mechanism of the threads (the barriers, the pool's start and end, the rows of
+// a new depth buffer): returns once ready() holds. Polls for the thread's adaptive time, then
+// calls rest(), which returns once ready() holds without spinning the CPU (sleeps or yields).
+template <class Ready, class Rest>
+void poll_then(Ready&& ready, Rest&& rest) {
   if (ready()) return;
   thread_local std::chrono::nanoseconds spin = kSpinMax;
   const auto until = std::chrono::steady_clock::now() + spin;
@@ -54,11 +57,31 @@ void spin_then_wait(std::mutex& m, std::condition_variable& cv, Ready&& ready) {
       spin = std::min(kSpinMax, spin * 2);
       return;
     }
-    if ((i & 63) == 0 && std::chrono::steady_clock::now() > until) break;
+    if (i % kPollsPerClockRead == 0 && std::chrono::steady_clock::now() > until) break;
   }
   spin = std::max(kSpinMin, spin / 2);
-  std::unique_lock<std::mutex> lock(m);
-  cv.wait(lock, ready);
+  rest();
+}
+
+// A long wait (a barrier, the pool): polls, then sleeps on `cv` (whoever makes ready() true does
+// so holding `m`, then notifies `cv`).
+template <class Ready>
+void spin_then_wait(std::mutex& m, std::condition_variable& cv, Ready&& ready) {
+  poll_then(ready, [&] {
+    std::unique_lock<std::mutex> lock(m);
+    cv.wait(lock, ready);
+  });
+}
+
+// A short wait on a state published without a lock, a band at a time (a new depth buffer's rows:
+// a sleeping waiter would need the filling thread to take the lock and notify at every band):
+// polls, then yields the core until ready() holds (more threads than cores: the thread waited
+// for gets to run).
+template <class Ready>
+void spin_then_yield(Ready&& ready) {
+  poll_then(ready, [&] {
+    while (!ready()) std::this_thread::yield();
+  });
 }
 
 // All threads wait until the last one arrives; the last one runs `last` before releasing them.
@@ -488,11 +511,7 @@ class FrameRun {
   // Before a thread other than 0 rasterises up to row `row` (from the viewport's bottom) in the
   // step that fills a new depth buffer: wait until thread 0 has filled it.
   void wait_rows(int64_t row) {
-    if (!ctl_.clear_new) return;
-    for (unsigned i = 1; clear_rows_.load(std::memory_order_acquire) <= row; ++i) {
-      cpu_relax();
-      if ((i & 255) == 0) std::this_thread::yield();  // more threads than cores: let thread 0 run
-    }
+    if (ctl_.clear_new) spin_then_yield([&] { return clear_rows_.load(std::memory_order_acquire) > row; });
   }
 
   // Step 0 with a reused depth buffer: this thread's bands cleared.
