@@ -245,7 +245,8 @@ struct alignas(kCacheLineBytes) Worker {
   size_t cur_r = 0;
   uint64_t cur_k = 0;
   uint64_t next_start = kNoStart;  // weight where this thread's next item starts (after a step)
-  size_t direct = 0;               // thread 0: records written straight into the frame (split step)
+  size_t direct = 0;               // records written straight into the frame (a split step) …
+  size_t placed = 0;               // … from this record on (thread 0: the step's first)
   std::exception_ptr error;
 };
 
@@ -444,7 +445,7 @@ class FrameRun {
     std::optional<FragmentChain<NoTaps>> chain;  // made after the depth buffer exists
     // The step's store, retargeted per step (KeepFragments: the span path, model/unit/backend.hpp).
     KeepFragments to_store(me.step[0].store);
-    WindowSink window;                                  // thread 0's rows of a split step …
+    WindowSink window;                                  // this thread's rows of a split step …
     std::optional<FragmentChain<NoTaps>> direct_chain;  // … and the chain writing them
     std::vector<SetupTriangle> pieces;
     InputTriangle in;
@@ -460,8 +461,8 @@ class FrameRun {
             if (!chain) chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, records_ ? &to_store : nullptr, taps);
             raster(w, *chain, ctl_.split);
             if (ctl_.split) {
-              if (w == 0 && !direct_chain) direct_chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, &window, taps);
-              raster_split(w, *chain, w == 0 ? *direct_chain : *chain, window);
+              if (!direct_chain) direct_chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, &window, taps);
+              raster_split(w, *chain, *direct_chain, window);
             }
           }
           if (ctl_.setup >= 0) {
@@ -481,7 +482,7 @@ class FrameRun {
       barrier_.wait([&] {
         phase(w, ThreadPhase::Serial);
         try {
-          decide();
+          decide(w);
         } catch (...) {  // the frame's store could not grow: every thread stops after this step
           me.error = std::current_exception();
           failed_ = true;
@@ -656,10 +657,14 @@ class FrameRun {
   }
 
   // A split step (plan_split): stages 6–10 on this thread's contiguous part of the step's rows of
-  // its one triangle; thread 0's part leads the step's records and goes straight into the
-  // frame's store (from record window_base_, through `direct`), the others' into their step
-  // stores as one run. In the step that fills a new depth buffer the rows are claimed instead, a
-  // piece of band_rows rows at a time, by whichever thread is free (thread 0 once it has filled).
+  // its one triangle. Thread 0's part leads the step's records and goes straight into the frame's
+  // store from record window_base_ (through `direct`). With ctl_.in_place the other parts go
+  // straight in too: part w from window_base_ + the fragments the parts before it generate
+  // (counted here by traversal: at least the records they keep, so the parts never overlap; equal
+  // when no fragment of theirs fails the depth test, else decide() closes the gap); without, into
+  // their step stores as one run. In the step that fills a new depth buffer the rows are claimed
+  // instead, a piece of band_rows rows at a time, by whichever thread is free (thread 0 once it
+  // has filled).
   void raster_split(int w, FragmentChain<NoTaps>& chain, FragmentChain<NoTaps>& direct, WindowSink& window) {
     const int q = (int)(ctl_.raster & 1);
     const Batch& b = (*chunks_[q])[ctl_.split_chunk];
@@ -674,15 +679,27 @@ class FrameRun {
     }
     const int64_t lo = ctl_.split_rows[(size_t)w], hi = ctl_.split_rows[(size_t)w + 1] - 1;
     if (lo > hi) return;
-    if (w == 0) {
-      phase(0, ThreadPhase::Direct);
+    if (w == 0 || ctl_.in_place) {
+      phase(w, ThreadPhase::Direct);
       const size_t width = (size_t)((int64_t)eq.edges.x1 - eq.edges.x0 + 1);
-      window.reset(keep_->records_for_overwrite(window_base_), (size_t)(hi - lo + 1) * width, nv_);
+      const size_t at = window_base_ + (w == 0 ? 0 : generated(eq.edges, ctl_.split_rows[0], lo - 1));
+      window.reset(keep_->records_for_overwrite(at), (size_t)(hi - lo + 1) * width, nv_);
       direct.rows(eq, (int)lo, (int)hi);
-      W_[0].direct = window.count();
+      W_[(size_t)w].placed = at;
+      W_[(size_t)w].direct = window.count();
       return;
     }
     split_rows(w, chain, eq, lo, hi);
+  }
+  // The fragments stages 6–10 generate in rows lo … hi of a triangle (traversal's covered pixels,
+  // before the depth test: at least the records those rows keep).
+  static size_t generated(const TriSetup& tri, int64_t lo, int64_t hi) {
+    TriSetup t = tri;
+    t.y0 = (int)std::max<int64_t>(t.y0, lo);
+    t.y1 = (int)std::min<int64_t>(t.y1, hi);
+    size_t n = 0;
+    if (t.y0 <= t.y1) traverse(t, [&](int, int xb, int xe) { n += (size_t)(xe - xb + 1); });
+    return n;
   }
   // Rows lo … hi of a split step's triangle into this thread's step store, as one run.
   void split_rows(int w, FragmentChain<NoTaps>& chain, const TriangleEquations& eq, int64_t lo, int64_t hi) {
@@ -784,8 +801,8 @@ class FrameRun {
     flush();
   }
 
-  // Between two steps, on the last thread to arrive: what the next step does.
-  void decide() {
+  // Between two steps, on the last thread `w` to arrive: what the next step does.
+  void decide(int w) {
     ctl_.fill_depth = false;
     ctl_.clear_new = defer_clear_;  // the step after step 0 fills a deferred new depth buffer
     defer_clear_ = false;
@@ -794,13 +811,13 @@ class FrameRun {
       size_t total = 0;
       uint64_t next = kNoStart;
       for (const Worker& w : W_) total += w.step[ctl_.rec_parity].store.size(), next = std::min(next, w.next_start);
-      if (records_) {  // after the records thread 0 wrote straight into the frame (a split step)
+      if (records_) {  // after the records written straight into the frame (a split step)
         ctl_.out_parity = ctl_.rec_parity;
-        out_base_ = out_size_ + W_[0].direct;
+        out_base_ = close_parts(w);
         out_size_ = out_base_ + total;
         if (keep_) keep_->resize_for_overwrite(out_size_);
       }
-      W_[0].direct = 0;
+      for (Worker& t : W_) t.direct = 0;
       if (next == kNoStart) {
         ++rastered_;
         ctl_.raster = -1;
@@ -847,13 +864,38 @@ class FrameRun {
     ctl_.done = ctl_.raster < 0 && ctl_.setup < 0 && ctl_.out_parity < 0;
   }
 
+  // After a split step, the parts written straight into the frame's store made contiguous (a part
+  // that kept fewer records than it generated — depth-test failures — left a gap before the next:
+  // the later parts move down, in order, and the frame's next split steps copy their parts ≥ 1
+  // from the step stores instead); returns the end of the frame's records so far.
+  size_t close_parts(int w) {
+    size_t at = out_size_ + W_[0].direct;
+    if (!ctl_.split || !ctl_.in_place) return at;
+    for (int t = 1; t < T_; ++t) {
+      const Worker& p = W_[(size_t)t];
+      if (p.direct == 0) continue;
+      if (p.placed < at) throw std::logic_error("threads: a split step's parts overlap");
+      if (p.placed > at) {
+        phase(w, ThreadPhase::Compact);
+        std::memmove(keep_->records_for_overwrite(at), keep_->records_for_overwrite(p.placed),
+                     p.direct * keep_->record_bytes());
+        phase(w, ThreadPhase::Serial);
+        in_place_ok_ = false;
+      }
+      at += p.direct;
+    }
+    return at;
+  }
+
   // Whether the next raster step is a split step (model/unit/threads.hpp): the fragments kept,
   // every item starting in [raster_from_, raster_end) of one triangle, at least a row per
   // thread, and room in the frame's store for part 0's candidate pixels. Then its rows are cut
   // into T_ contiguous parts of about equal estimated coverage and the store's size covers that
-  // room for thread 0 to write into.
+  // room for thread 0 to write into — or, with room for the whole step's candidate pixels, for
+  // every part (ctl_.in_place, raster_split).
   void plan_split() {
     ctl_.split = false;
+    ctl_.in_place = false;
     if (!keep_ || T_ < 2 || ctl_.raster < 0 || ctl_.raster_end >= kWeightCap) return;
     const int q = (int)(ctl_.raster & 1);
     const uint64_t from = raster_from_, end = ctl_.raster_end;
@@ -897,11 +939,13 @@ class FrameRun {
     // frame's size; growing it here would copy the frame so far, serially): else bands.
     const size_t room = out_size_ + (size_t)(ctl_.split_rows[1] - ra) * (size_t)width;
     if (room > keep_->capacity()) return;
+    const size_t room_all = out_size_ + (size_t)(rb + 1 - ra) * (size_t)width;
+    ctl_.in_place = !ctl_.clear_new && in_place_ok_ && room_all <= keep_->capacity();
     ctl_.split = true;
     ctl_.split_chunk = c;
     ctl_.split_tri = i;
     window_base_ = out_size_;
-    keep_->resize_for_overwrite(room);
+    keep_->resize_for_overwrite(ctl_.in_place ? room_all : room);
   }
 
   const Config& cfg_;
@@ -923,6 +967,7 @@ class FrameRun {
   Barrier barrier_;
   std::atomic<bool> failed_{false};
   bool reuse_depth_ = false;
+  bool in_place_ok_ = true;   // no split step of the frame has closed a gap yet (close_parts)
   bool defer_clear_ = false;  // a new depth buffer, filled by thread 0 in step 1 …
   alignas(kCacheLineBytes) std::atomic<int64_t> clear_rows_{0};  // … rows filled so far
   char pad2_[kCacheLineBytes - sizeof(std::atomic<int64_t>)];
@@ -942,6 +987,7 @@ class FrameRun {
     int rec_parity = 1;       // buffers of this step's records (flips at each raster step)
     int out_parity = -1;      // buffers of the previous raster step, output in this step (−1: none)
     bool split = false;       // a split step (plan_split): triangle split_tri of chunk split_chunk, …
+    bool in_place = false;    // … every part written straight into the frame's store (else part 0 only)
     size_t split_chunk = 0, split_tri = 0;
     std::vector<int64_t> split_rows;  // … rows [split_rows[w], split_rows[w + 1]) on thread w
   } ctl_;

@@ -27,8 +27,11 @@
 //     `threads` contiguous parts of about equal estimated coverage instead of bands, part w on
 //     thread w (one triangle per step: every depth word still has one writer in triangle
 //     order). Part 0 leads the step's records, so thread 0 writes them straight into the
-//     frame's store at the step's first offset; only the other parts are copied in the next
-//     step (docs/speed.md "Session 10: threads");
+//     frame's store at the step's first offset; part w ≥ 1 goes straight in too, after the
+//     fragments the parts before it generate (its thread counts them by traversal; a gap left by
+//     depth-test failures is closed between the steps), when the store has room for the whole
+//     step's candidate pixels, else into its step store to be copied in the next step
+//     (docs/speed.md "Session 10: threads", "Session 11: threads");
 //   - a new depth buffer is filled by the calling thread in the first raster step (step 1), a
 //     band at a time, while the others rasterise the rows already filled (that step's rows of a
 //     split step are claimed in pieces of band_rows rows by whichever thread is free).
@@ -67,6 +70,7 @@ enum class ThreadPhase : uint8_t {
   Serial,  // the last thread at a barrier decides the next step (the others wait)
   Direct,  // stages 6–10 on thread 0's rows of a split step, written straight into the frame
   Clear,   // thread 0 fills a new depth buffer within the first raster step
+  Compact, // the last thread at a barrier closes a gap between a split step's parts (within Serial)
   Done,    // the frame is finished for this thread
 };
 class ThreadObserver {

@@ -485,16 +485,36 @@ TEST(Threads, MeshesThroughTheSharedVertexCacheEqualTheSequentialUnit) {
 
 namespace {
 
-// Counts the split steps' direct rows (ThreadPhase::Direct) per thread, and thread 0's fills
-// of a new depth buffer within a step (ThreadPhase::Clear).
+// Counts the split steps' direct rows (ThreadPhase::Direct) on thread 0 and on the others (parts
+// written in place), thread 0's fills of a new depth buffer within a step (ThreadPhase::Clear;
+// on another thread: `elsewhere`) and the gaps closed between a split step's parts (Compact).
 class DirectCounter final : public ThreadObserver {
  public:
   void phase(int thread, ThreadPhase p) override {
-    if (p == ThreadPhase::Direct) ++(thread == 0 ? on_0 : elsewhere);
+    if (p == ThreadPhase::Direct) ++(thread == 0 ? on_0 : in_place);
     if (p == ThreadPhase::Clear) ++(thread == 0 ? clear : elsewhere);
+    if (p == ThreadPhase::Compact) ++compact;
   }
-  std::atomic<int> on_0{0}, elsewhere{0}, clear{0};
+  std::atomic<int> on_0{0}, in_place{0}, elsewhere{0}, clear{0}, compact{0};
 };
+
+ClipVertex plane_vertex(float x, float y, float z, float w, float a, float b) {
+  ClipVertex v;
+  v.pos[0] = x * w, v.pos[1] = y * w, v.pos[2] = z * w, v.pos[3] = w, v.var[0] = a, v.var[1] = b;
+  return v;
+}
+
+// A grazing-plane-like quad (two triangles sharing an edge) over a 150 × 110 viewport, 2 varyings.
+Case quad_case() {
+  Case c;
+  c.name = "split";
+  c.st.viewport_x = -5, c.st.viewport_y = 4, c.st.viewport_w = 150, c.st.viewport_h = 110;
+  c.st.num_varyings = 2;
+  const ClipVertex p = plane_vertex(-0.95f, -0.9f, 0.2f, 1.0f, 0, 0), q = plane_vertex(0.97f, -0.93f, 0.3f, 1.3f, 5, 0),
+                   r = plane_vertex(0.6f, 0.95f, 0.9f, 3.5f, 5, 7), s = plane_vertex(-0.7f, 0.9f, 0.8f, 3.0f, 0, 7);
+  c.tris = {ClipTriangle{{p, q, r}}, ClipTriangle{{p, r, s}}};
+  return c;
+}
 
 }  // namespace
 
@@ -506,20 +526,9 @@ TEST(Threads, SplitStepsWriteThreadZerosRowsStraightIntoTheFrame) {
   // store first has no room: bands until it has grown; its depth buffer filled by thread 0 in
   // the first raster step, whose rows the threads claim) and on a reused one; a sink gets the
   // same stream without any split step.
-  Case c;
-  c.name = "split";
-  c.st.viewport_x = -5, c.st.viewport_y = 4, c.st.viewport_w = 150, c.st.viewport_h = 110;
-  c.st.num_varyings = 2;
-  const auto vtx = [](float x, float y, float z, float w, float a, float b) {
-    ClipVertex v;
-    v.pos[0] = x * w, v.pos[1] = y * w, v.pos[2] = z * w, v.pos[3] = w, v.var[0] = a, v.var[1] = b;
-    return v;
-  };
-  const ClipVertex p = vtx(-0.95f, -0.9f, 0.2f, 1.0f, 0, 0), q = vtx(0.97f, -0.93f, 0.3f, 1.3f, 5, 0),
-                   r = vtx(0.6f, 0.95f, 0.9f, 3.5f, 5, 7), s = vtx(-0.7f, 0.9f, 0.8f, 3.0f, 0, 7);
-  c.tris = {ClipTriangle{{p, q, r}}, ClipTriangle{{p, r, s}},
-            ClipTriangle{{vtx(-0.3f, -0.8f, 0.1f, 1.0f, 1, 2), vtx(0.9f, 0.1f, 0.1f, 1.0f, 3, 4),
-                          vtx(-0.5f, 0.7f, 0.5f, 2.0f, 5, 6)}}};
+  Case c = quad_case();
+  c.tris.push_back(ClipTriangle{{plane_vertex(-0.3f, -0.8f, 0.1f, 1.0f, 1, 2), plane_vertex(0.9f, 0.1f, 0.1f, 1.0f, 3, 4),
+                                 plane_vertex(-0.5f, 0.7f, 0.5f, 2.0f, 5, 6)}});
   const FrameOutput want = run_raster_unit(c.cfg, c.st, c.tris);
   ASSERT_GT(want.fragments.size(), 10000u);
   int split_frames = 0;
@@ -544,6 +553,9 @@ TEST(Threads, SplitStepsWriteThreadZerosRowsStraightIntoTheFrame) {
         // step), nor at the default (whole triangles, several a step).
         const bool split = step > 40 && step < kThreadStepPixels && (step > 150 || t == 2);
         EXPECT_EQ(n.on_0.load() > 0, split) << what << ": split steps " << n.on_0.load();
+        if (!split) {
+          EXPECT_EQ(n.in_place.load(), 0) << what << ": parts in place without a split step";
+        }
         split_frames += split;
         DirectCounter none;
         o.observer = &none;
@@ -555,11 +567,54 @@ TEST(Threads, SplitStepsWriteThreadZerosRowsStraightIntoTheFrame) {
         run_raster_unit_threads(c.cfg, c.st, c.tris, g, nullptr, &sink, o);
         g.fragments = sink.s;
         expect_same_frame(want, g, 2, what + " sink");
-        EXPECT_EQ(none.on_0.load() + none.elsewhere.load(), 0) << what << ": a split step without a kept store";
+        EXPECT_EQ(none.on_0.load() + none.in_place.load() + none.elsewhere.load(), 0)
+            << what << ": a split step without a kept store";
       }
   EXPECT_EQ(split_frames, 14);
   // No triangle: no raster step; the new depth buffer is still filled (after the steps).
   ThreadOptions o;
   o.threads = 2;
   expect_same_frame(run_raster_unit(c.cfg, c.st, {}), run_raster_unit(c.cfg, c.st, {}, o), 2, "no triangle");
+}
+
+TEST(Threads, SplitStepsWriteEveryPartInPlaceAndCloseTheGapsOfDepthFailures) {
+  // A split step's parts ≥ 1 written straight into the frame's store after the fragments the
+  // parts before them generate. The quad alone fails no depth test: every part lands where the
+  // sequential stream puts it (no gap closed: a miscounted part would leave one). Behind an
+  // occluder drawn first, a part keeps fewer records than it generates: the gaps are closed
+  // between the steps. Each frame (new, then reused) equals the sequential unit's.
+  Case quad = quad_case(), hidden = quad_case();
+  hidden.name = "occluded split";
+  hidden.tris.insert(hidden.tris.begin(),
+                     ClipTriangle{{plane_vertex(-0.8f, -0.7f, 0.05f, 1.0f, 1, 2), plane_vertex(0.7f, -0.2f, 0.05f, 1.0f, 3, 4),
+                                   plane_vertex(-0.2f, 0.8f, 0.05f, 1.0f, 5, 6)}});
+  for (const Case* c : {&quad, &hidden}) {
+    const FrameOutput want = run_raster_unit(c->cfg, c->st, c->tris);
+    const bool fails = c == &hidden;
+    ASSERT_EQ(want.stats.fragments_depth_fail > 0, fails) << c->name;
+    int in_place = 0, compact = 0;
+    for (int t : {2, 3, 5})
+      for (int step : {1000, 4000})
+        for (int rows : {1, 8}) {
+          DirectCounter n;
+          ThreadOptions o;
+          o.threads = t, o.band_rows = rows, o.step_pixels = step, o.observer = &n;
+          const std::string what = c->name + " threads " + std::to_string(t) + " step " + std::to_string(step) +
+                                   " rows " + std::to_string(rows);
+          FrameOutput f;
+          for (int frame = 0; frame < 2; ++frame) {
+            run_raster_unit_threads(c->cfg, c->st, c->tris, f, &f.fragments, nullptr, o);
+            expect_same_frame(want, f, 2, what + (frame ? " reused" : " new"));
+          }
+          EXPECT_GT(n.on_0.load(), 0) << what << ": no split step";
+          if (!fails) {
+            EXPECT_EQ(n.compact.load(), 0) << what << ": a gap where no fragment failed";
+          }
+          in_place += n.in_place.load(), compact += n.compact.load();
+        }
+    EXPECT_GT(in_place, 0) << c->name << ": no part ≥ 1 written in place";
+    if (fails) {
+      EXPECT_GT(compact, 0) << c->name << ": no gap closed";
+    }
+  }
 }
