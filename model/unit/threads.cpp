@@ -421,7 +421,7 @@ class FrameRun {
       f_.depth.clear();
       f_.depth.reserve(words);  // the rows are appended by new_depth_rows (the data never moves)
     }
-    next_chunk_.store(0, std::memory_order_relaxed);
+    claims_.store(0, std::memory_order_relaxed);
     ctl_.done = false;
     auto body = [this](int w) { thread_body(w); };
     pool.run(body);
@@ -526,18 +526,35 @@ class FrameRun {
     }
   }
 
-  // Stages 1–5 on the chunks of batch ctl_.setup this thread claims (the next unclaimed one, until
-  // none is left: a thread with less raster work in the step sets up more); the triangles routed
-  // to their bands' threads and weighted (rows × width, saturating).
+  // Stages 1–5 on the chunks of batch ctl_.setup this thread claims (claim_chunk, until none is
+  // left: a thread with less raster work in the step sets up more); the triangles routed to their
+  // bands' threads and weighted (rows × width, saturating).
   void set_up(int w, GeometryChain<NoTaps>& geometry, SetupStage& setup, std::vector<SetupTriangle>& pieces,
               InputTriangle& in) {
     const int q = (int)(ctl_.setup & 1);
     const size_t lo = (size_t)ctl_.setup * B_, len = std::min(B_, tris_.size() - lo);
     for (;;) {
-      const size_t c = next_chunk_.fetch_add(1, std::memory_order_relaxed);
+      const size_t c = claim_chunk(w, nchunks_[q]);
       if (c >= nchunks_[q]) return;
       const size_t p0 = lo + c * C_;
       set_up_chunk(w, (*chunks_[q])[c], p0, std::min(lo + len, p0 + C_), geometry, setup, pieces, in);
+    }
+  }
+
+  // The next unclaimed chunk of the n of the batch being set up (n: none left). The first half of
+  // the threads claim from the batch's front, the others from its back, so a thread's chunks are
+  // mostly consecutive primitives: a vertex shared by neighbouring primitives is then found in
+  // vertex-table lines this thread wrote rather than in the other core's cache (docs/speed.md
+  // "Session 11: threads"). Which thread sets a chunk up changes no output.
+  size_t claim_chunk(int w, size_t n) {
+    const bool from_back = w >= (T_ + 1) / 2;
+    uint64_t cur = claims_.load(std::memory_order_relaxed);
+    for (;;) {
+      const uint64_t front = cur & kClaimMask, back = cur >> kClaimBits;
+      if (front + back >= n) return n;
+      const uint64_t next = from_back ? cur + (uint64_t{1} << kClaimBits) : cur + 1;
+      if (claims_.compare_exchange_weak(cur, next, std::memory_order_relaxed))
+        return from_back ? (size_t)(n - 1 - back) : (size_t)front;
     }
   }
 
@@ -857,7 +874,7 @@ class FrameRun {
       ctl_.setup = set_up_;
       const size_t lo = (size_t)set_up_ * B_, len = std::min(B_, tris_.size() - lo);
       nchunks_[set_up_ & 1] = (len + C_ - 1) / C_;
-      next_chunk_.store(0, std::memory_order_relaxed);
+      claims_.store(0, std::memory_order_relaxed);
     }
     if (ctl_.raster >= 0) ctl_.rec_parity ^= 1;
     plan_split();
@@ -999,9 +1016,12 @@ class FrameRun {
   bool batch_empty_[2] = {true, true};
   size_t nchunks_[2] = {0, 0};                          // chunks of the batch, by batch parity
   std::vector<uint64_t> base_weight_[2], base_tri_[2];  // per chunk, by batch parity
-  // The next chunk of the batch being set up to claim (reset between steps).
-  alignas(kCacheLineBytes) std::atomic<size_t> next_chunk_{0};
-  char pad_[kCacheLineBytes - sizeof(std::atomic<size_t>)];
+  // The chunks of the batch being set up claimed so far from its front (the low kClaimBits bits)
+  // and from its back (the high ones); reset between steps.
+  static constexpr int kClaimBits = 32;
+  static constexpr uint64_t kClaimMask = (uint64_t{1} << kClaimBits) - 1;
+  alignas(kCacheLineBytes) std::atomic<uint64_t> claims_{0};
+  char pad_[kCacheLineBytes - sizeof(std::atomic<uint64_t>)];
   // output()'s merge, per thread: each thread's next run.
   struct alignas(kCacheLineBytes) OutputCursor {
     std::vector<size_t> head;

@@ -4,8 +4,9 @@
 // Geometry and setup by primitive batches, the back end by interleaved bands of rows, in steps
 // separated by one barrier each:
 //   - the primitives are taken in batches of `batch_prims`, cut into chunks of
-//     `setup_chunk_prims`; the threads claim the chunks one at a time, in order, as they come
-//     to them (a thread with less raster work in the step sets up more), run stages 1–5 on a
+//     `setup_chunk_prims`; the threads claim the chunks one at a time as they come to them, half
+//     of them from the batch's front, the others from its back (a thread with less raster work
+//     in the step sets up more; a thread's chunks are mostly consecutive), run stages 1–5 on a
 //     chunk's primitives (a pure function of the primitive), count each primitive's disposition
 //     and route each set-up triangle to the threads owning one of its bands;
 //   - the window rows are cut into bands of `band_rows` rows, band b (from the viewport's bottom)
