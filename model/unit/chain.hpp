@@ -53,6 +53,45 @@ struct NoTaps {
   void out(const typename S::Out&) {}
 };
 
+// The clipper's counters of one input primitive, for triangles (RasterStats' prims_trivial_accept,
+// prims_clipped, clip_vertices_created) and segments (LineStats' trivial_accept, clipped,
+// clip_vertices_created) alike: what follows an outcome differs between the two paths.
+inline void count_clip(const ClipOutcome o, const int vertices_created, uint64_t& trivial_accept, uint64_t& clipped,
+                       uint64_t& clip_vertices_created) {
+  switch (o) {
+    case ClipOutcome::Accepted: ++trivial_accept; break;
+    case ClipOutcome::Clipped:
+    case ClipOutcome::ClippedAway:
+    case ClipOutcome::RejectedOverflow:
+      ++clipped;
+      clip_vertices_created += (uint64_t)vertices_created;
+      break;
+    case ClipOutcome::CulledOutside:
+    case ClipOutcome::RejectedViewport: break;
+  }
+}
+
+// Stages 9–10 of one plane sample, for triangles and segments alike (the line path's
+// LineDepthStage / LineDivideStage are DepthStage / DivideStage under the names of its taps): the
+// depth test, then with a sink the divider and the sink; the sample counts once in
+// stats.fragments_depth_pass or _fail.
+template <class Depth, class Divide, class Taps>
+inline void depth_divide(const PlaneSample& ps, Depth& depth, Divide& divide, FragmentSink* sink, RasterStats& stats,
+                         Taps& taps) {
+  taps.template in<Depth>(ps);
+  const bool pass = depth.step(ps, [&](const PlaneSample& p) {
+    taps.template out<Depth>(p);
+    if (!sink) return;
+    taps.template in<Divide>(p);
+    divide.step(p, [&](const Fragment& fr) {
+      taps.template out<Divide>(fr);
+      sink->emit(fr);
+    });
+  });
+  if (pass) ++stats.fragments_depth_pass;
+  else ++stats.fragments_depth_fail;
+}
+
 // Stages 1–4: one input primitive to 0..n snapped triangles.
 template <class Taps = NoTaps>
 class GeometryChain {
@@ -109,17 +148,7 @@ class GeometryChain {
       if (ro != RecipOutcome::Emitted) ++rejected_;  // this piece only
     });
     s.tris.geom_rejected_range += rejected_;
-    switch (r.outcome) {
-      case ClipOutcome::Accepted: ++s.prims_trivial_accept; break;
-      case ClipOutcome::Clipped:
-      case ClipOutcome::ClippedAway:
-      case ClipOutcome::RejectedOverflow:
-        ++s.prims_clipped;
-        s.clip_vertices_created += (uint64_t)r.vertices_created;
-        break;
-      case ClipOutcome::CulledOutside:
-      case ClipOutcome::RejectedViewport: break;
-    }
+    count_clip(r.outcome, r.vertices_created, s.prims_trivial_accept, s.prims_clipped, s.clip_vertices_created);
     switch (r.outcome) {
       case ClipOutcome::CulledOutside:
       case ClipOutcome::ClippedAway: return GeomOutcome::CulledOutside;
@@ -261,18 +290,7 @@ class FragmentChain {
     taps_.template in<InterpStage>(sp);
     interp_.step(eq, sp, [&](const PlaneSample& ps) {
       taps_.template out<InterpStage>(ps);
-      taps_.template in<DepthStage>(ps);
-      const bool pass = depth_.step(ps, [&](const PlaneSample& p) {
-        taps_.template out<DepthStage>(p);
-        if (!sink_) return;
-        taps_.template in<DivideStage>(p);
-        divide_.step(p, [&](const Fragment& fr) {
-          taps_.template out<DivideStage>(fr);
-          sink_->emit(fr);
-        });
-      });
-      if (pass) ++stats_.fragments_depth_pass;
-      else ++stats_.fragments_depth_fail;
+      depth_divide(ps, depth_, divide_, sink_, stats_, taps_);
     });
   }
 

@@ -10,6 +10,12 @@
 // The depth stage (the frame's depth buffer) and the divider are the triangles' own stages
 // (LineDepthStage, LineDivideStage: the same classes under the names of the line path's taps,
 // since segments have their own draw state).
+//
+// Shared with chain.hpp where the logic is the same: the clipper's counters (count_clip) and
+// stages 9–10 of a sample (depth_divide). Not shared: what follows a convert or clip outcome — a
+// segment counts itself in LineStats and stops there, a triangle's outcome goes back as a
+// GeomOutcome to the primitive accounting (count_geometry, PrimDisposition) while its other clipped
+// pieces go on — and the stages 3–8 in between, which are the line path's own (docs/lines.md).
 #pragma once
 
 #include <cstdint>
@@ -75,17 +81,7 @@ class LineChain {
       taps_.template out<LineClipStage>(c);
       cl = &c;
     });
-    switch (r.outcome) {
-      case ClipOutcome::Accepted: ++s.trivial_accept; break;
-      case ClipOutcome::Clipped:
-      case ClipOutcome::ClippedAway:
-      case ClipOutcome::RejectedOverflow:
-        ++s.clipped;
-        s.clip_vertices_created += (uint64_t)r.vertices_created;
-        break;
-      case ClipOutcome::CulledOutside:
-      case ClipOutcome::RejectedViewport: break;
-    }
+    count_clip(r.outcome, r.vertices_created, s.trivial_accept, s.clipped, s.clip_vertices_created);
     switch (r.outcome) {
       case ClipOutcome::CulledOutside:
       case ClipOutcome::ClippedAway: ++s.culled_outside; return;
@@ -119,18 +115,7 @@ class LineChain {
         taps_.template in<LineInterpStage>(lf);
         interp_.step(eq, lf, [&](const PlaneSample& ps) {
           taps_.template out<LineInterpStage>(ps);
-          taps_.template in<LineDepthStage>(ps);
-          const bool pass = depth_.step(ps, [&](const PlaneSample& p) {
-            taps_.template out<LineDepthStage>(p);
-            if (!sink_) return;
-            taps_.template in<LineDivideStage>(p);
-            divide_.step(p, [&](const Fragment& fr) {
-              taps_.template out<LineDivideStage>(fr);
-              sink_->emit(fr);
-            });
-          });
-          if (pass) ++stats_.fragments_depth_pass;
-          else ++stats_.fragments_depth_fail;
+          depth_divide(ps, depth_, divide_, sink_, stats_, taps_);
         });
       });
     });
