@@ -790,9 +790,10 @@ TEST(SpanSum, TheRectangleTestHoldsExactlyWhenEveryPixelIsInTheBinade) {
   // at the start −40 … 40, steps −6 … 6, every start pixel of a 4 × 3 rectangle), then random
   // planes of 2^40–2^110 near binade edges; where fixed, move() to any pixel leaves the state
   // arm(the plane's value there) gives.
-  uint64_t bad = 0, fixed = 0, not_fixed = 0;
+  uint64_t bad = 0, fixed = 0, not_fixed = 0, at_corner = 0;
   std::mt19937_64 g(9);
   auto check = [&](const Plane& p, const TriSetup& e, int a, int b, int bits) {
+    at_corner += p.i0 == e.x0 && p.j0 == e.y0 ? 1 : 0;  // start() takes p.c as the corner's value
     FusedSpan::Sum s;
     FusedSpan::Counts k;
     Span sp;
@@ -857,4 +858,6 @@ TEST(SpanSum, TheRectangleTestHoldsExactlyWhenEveryPixelIsInTheBinade) {
   EXPECT_EQ(bad, 0u);
   EXPECT_GT(fixed, 10000u);
   EXPECT_GT(not_fixed, 10000u);
+  EXPECT_GT(at_corner, 10000u);                       // planes anchored at the rectangle's corner
+  EXPECT_GT(fixed + not_fixed - at_corner, 10000u);  // and elsewhere (Plane::at)
 }
