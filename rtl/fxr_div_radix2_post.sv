@@ -30,7 +30,9 @@ module fxr_div_radix2_post #(
 
   assign neg   = r_i[RemBits-1];
   assign two_r = {r_i, 1'b0};
-  assign t     = neg ? (two_r + {3'b000, b_i}) : (two_r - {3'b000, b_i});
+  // 2r + b (r < 0) or 2r - b as one adder, the operand selected: 2r + (b XOR ~neg) + ~neg (the
+  // form of fxr_div_radix2's steps: no data-dependent branch in a simulator).
+  assign t     = two_r + ({3'b000, b_i} ^ {(RemBits + 1){~neg}}) + {{RemBits{1'b0}}, ~neg};
   assign q     = {p_i[QuotBits-2:0], ~neg};
 
   fxr_round #(

@@ -133,6 +133,7 @@ module fxr_div_recip_mul #(
       ) u_step (
         .clk_i(clk_i),
         .en_i (out_free),
+        .act_i(|v_q),
         .x_i  (b_q[SA*W +: W]),
         .y_i  (y0_q),
         .y_o  (y_s[YBits +: YBits])
@@ -145,6 +146,7 @@ module fxr_div_recip_mul #(
       ) u_step (
         .clk_i(clk_i),
         .en_i (out_free),
+        .act_i(|v_q),
         .x_i  (b_q[SA*W +: W]),
         .y_i  (y_s[i*YBits +: YBits]),
         .y_o  (y_s[(i+1)*YBits +: YBits])

@@ -131,6 +131,7 @@ module fxr_recip #(
       ) u_step (
         .clk_i(clk_i),
         .en_i (advance),
+        .act_i(|valid_q),
         .x_i  (m_q[0 +: InSigBits]),
         .y_i  (y0_q),
         .y_o  (y_s[0 +: F])
@@ -143,6 +144,7 @@ module fxr_recip #(
       ) u_step (
         .clk_i(clk_i),
         .en_i (advance),
+        .act_i(|valid_q),
         .x_i  (m_q[(2*j)*InSigBits +: InSigBits]),
         .y_i  (y_s[(j-1)*F +: F]),
         .y_o  (y_s[j*F +: F])

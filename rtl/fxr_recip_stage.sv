@@ -84,14 +84,17 @@ module fxr_recip_stage #(
     assign w_exp = in_flat[At-2-SigBits -: FxExp];
 
     // Leading one of w_sig (msb index p; 0 for w_sig = 0), the significand left-aligned: the
-    // shared log-step normaliser (rtl/fxr_norm_log.sv).
+    // shared log-step normaliser (rtl/fxr_norm_log.sv), enabled with a triangle at the input (its
+    // outputs are read only then: the lanes take them and the FIFO the range flags on a push), so
+    // that a simulator skips the shifts on idle clocks (docs/rtl.md, "Co-simulation speed",
+    // session 11).
     logic [LzBits-1:0]  p;
     logic [SigBits-1:0] aligned;
     fxr_norm_log #(
       .Width  (SigBits),
       .MsbBits(LzBits)
     ) u_norm (
-      .en_i  (1'b1),
+      .en_i  (in_valid_i),
       .x_i   (w_sig),
       .norm_o(aligned),
       .msb_o (p)
@@ -156,7 +159,12 @@ module fxr_recip_stage #(
   assign in_ready_o = lanes_advance && !side_full;
   assign lanes_in_valid = in_valid_i && !side_full;
   assign push = in_valid_i && in_ready_o;
-  assign side_head = side_mem[rd_ptr];
+  // The head entry is read only with a result at the lanes' output ('0 otherwise: nothing reads
+  // it then), so that a simulator skips the wide read and the output record on idle clocks.
+  always_comb begin
+    side_head = '0;
+    if (lane_out_valid[0]) side_head = side_mem[rd_ptr];
+  end
   // A flagged triangle: w = 0 (dbz), 1/w out of range (ovf), or w's lead exponent out of range.
   assign drop = lane_out_valid[0] && ((|lane_dbz) || (|lane_ovf) || (|side_head[2:0]));
   assign lanes_out_ready = out_ready_i || drop;

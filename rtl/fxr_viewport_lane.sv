@@ -111,17 +111,6 @@ module fxr_viewport_lane #(
   logic [RestBits-1:0] rest_l;
   logic [QuotBits-1:0] quo_l;
 
-  // Step t: r = 2·rem + the next numerator bit; q_t = r ≥ d; the remainder r − q_t·d (< d).
-  // Returns {q_t, remainder}.
-  function automatic logic [RemBits:0] div_step(input logic [RemBits-1:0] rem, input logic nb,
-                                                input logic [DBits-1:0] d);
-    logic [DBits:0]   r;
-    logic [DBits+1:0] sub;   // r − d; its sign bit is the quotient bit's complement
-    r = {rem, nb};
-    sub = {1'b0, r} - {2'b0, d};
-    div_step = !sub[DBits+1] ? {1'b1, sub[DBits-1:0]} : {1'b0, r[DBits-1:0]};
-  endfunction
-
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       v_q <= '0;
@@ -142,17 +131,27 @@ module fxr_viewport_lane #(
     if (en_i && |v_q[QuotBits-1:0]) begin
       for (int t = QuotBits - 1; t >= 0; t--) begin
         if (v_q[t]) begin
-          logic [RemBits:0] st;
-          st = div_step(rem_a[t], rest_a[t][RestBits-1], d_a[t]);
+          logic [DBits:0]      r;
+          logic [DBits+1:0]    sub;
+          logic [RemBits-1:0]  rem;
+          logic [QuotBits-1:0] quo;
+          // Step t: r = 2·rem + the next numerator bit; q_t = r ≥ d (the complement of the sign of
+          // r − d); the remainder r − q_t·d (< d). Written out here: a function returning {q_t,
+          // remainder} made a simulator pack and unpack a word per step (docs/rtl.md,
+          // "Co-simulation speed", session 11).
+          r = {rem_a[t], rest_a[t][RestBits-1]};
+          sub = {1'b0, r} - {2'b0, d_a[t]};
+          rem = sub[DBits+1] ? r[DBits-1:0] : sub[DBits-1:0];
+          quo = {quo_a[t][QuotBits-2:0], ~sub[DBits+1]};
           if (t + 1 < QuotBits) begin
-            rem_a[t+1] = st[RemBits-1:0];
+            rem_a[t+1] = rem;
             rest_a[t+1] = {rest_a[t][RestBits-2:0], 1'b0};
-            quo_a[t+1] = {quo_a[t][QuotBits-2:0], st[RemBits]};
+            quo_a[t+1] = quo;
             d_a[t+1] = d_a[t];
           end else begin
-            rem_l <= st[RemBits-1:0];
+            rem_l <= rem;
             rest_l <= {rest_a[t][RestBits-2:0], 1'b0};
-            quo_l <= {quo_a[t][QuotBits-2:0], st[RemBits]};
+            quo_l <= quo;
           end
         end
       end

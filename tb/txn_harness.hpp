@@ -150,6 +150,9 @@ struct TxnOptions {
   unsigned in_gap_pct = 25, out_stall_pct = 25;
   uint64_t timeout_cycles = 200000;  // cycles without an output while one is owed: lost
   uint64_t reset_cycles = 4, drain_cycles = 200;
+  // With TxnHook::settled: once it holds after the last output, the drain ends this many clocks
+  // later (drain_cycles stays the limit when it never holds).
+  uint64_t settled_drain_cycles = 400;
   uint64_t input_delay_cycles = 0;  // no input offered in the first cycles after reset (a register block's writes)
   uint64_t wave_before = 200, wave_after = 20;
   bool write_wave = true, print = true;
@@ -180,6 +183,10 @@ struct TxnHook {
   std::function<void(Dut&)> drive;    // before every evaluation of the cycle's inputs (and in reset)
   std::function<void(Dut&)> observe;  // after the cycle's handshakes settled, before the edge
   std::function<void(Dut&)> finish;   // once after the last clock (the final counter values)
+  // After the last output, once per clock (the registered outputs after the edge): true when the
+  // DUT has accounted for everything it was given (its counters say so); the drain then ends
+  // TxnOptions::settled_drain_cycles later instead of after drain_cycles. Empty: the full drain.
+  std::function<bool(Dut&)> settled;
 };
 
 struct TxnMismatch {
@@ -233,7 +240,10 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
   std::unique_ptr<VerilatedFstC> tfp;
   if (trace) tfp = open_trace(*dut, wave);
   std::mt19937_64 hs(o.seed);
-  auto chance = [&hs](unsigned pct) { return (hs() % 100) < pct; };
+  // Without gaps and stalls the generator is not drawn at all (every chance is 0): the same
+  // handshakes, two fewer draws per clock in the figures runs (docs/speed.md, "Session 11").
+  const bool no_chance = o.in_gap_pct == 0 && o.out_stall_pct == 0;
+  auto chance = [&hs, no_chance](unsigned pct) { return !no_chance && (hs() % 100) < pct; };
   uint64_t cycle = 0;
   auto dump = [&](uint64_t t) {
     if (tfp && cycle >= trace_first && cycle <= trace_last) tfp->dump(t);
@@ -295,6 +305,7 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
   auto line_of = [&](uint64_t r) { return v.out.path + ":" + std::to_string(r + 1); };
 
   uint64_t next_in = 0, next_out = 0, last_progress = 0, idle_after_end = 0;
+  uint64_t drain_limit = o.drain_cycles;  // shortened once hook->settled holds
   bool offering = false;
   VecRow got(v.out.lay.size());
   const auto t0 = std::chrono::steady_clock::now();
@@ -387,7 +398,11 @@ TxnResult txn_simulate(const SceneStageVectors& v, const SceneStageFile* ctx_fil
       break;
     }
     if (timed) timed_clocks.push_back({std::chrono::duration<double>(SteadyClock::now() - t_body).count(), t_eval, n_evals});
-    if (next_in == v.in.rows && next_out >= v.out.rows && ++idle_after_end > o.drain_cycles) break;
+    if (next_in == v.in.rows && next_out >= v.out.rows) {
+      if (++idle_after_end > drain_limit) break;
+      if (hook && hook->settled && drain_limit == o.drain_cycles && hook->settled(*dut))
+        drain_limit = std::min(o.drain_cycles, idle_after_end + o.settled_drain_cycles);
+    }
     if (tfp && cycle > trace_last) break;
   }
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

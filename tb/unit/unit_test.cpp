@@ -170,6 +170,26 @@ TEST(Unit, ClippedPiecesWithDifferentOutcomesMatchTheModel) {
   }
 }
 
+// The drain after the last output ends 400 clocks after every counter holds the model's final
+// value (tb/unit/unit_run.hpp), not after the fixed 20,000 clocks; when a counter never gets there
+// (here: the expectation asks for one more generated fragment than the unit makes) the drain runs
+// the full 20,000 clocks and the counter is reported.
+TEST(Unit, DrainEndsOnceTheCountersAccountForEverything) {
+  const fxr::Scene sc = fxr::load_scene(std::string(FXR_SOURCE_DIR) + "/scenes/clip_triangles.json");
+  Draw d = scene_draw(sc, "unit_drain");
+  const UnitRun a = run(d, d.u, Handshake{4, 0, 0, 1, 1, 0}, "unit_drain", false);
+  expect_match(d, a, "drain");
+  ASSERT_GT(a.k.r.last_out_cycle, 0u);
+  EXPECT_GE(a.k.r.cycles - a.k.r.last_out_cycle, 400u);
+  EXPECT_LT(a.k.r.cycles - a.k.r.last_out_cycle, 20000u);
+  d.want[7] += 1;  // frag_generated
+  const UnitRun b = run(d, d.u, Handshake{4, 0, 0, 1, 1, 0}, "unit_drain_never", false);
+  EXPECT_TRUE(b.k.r.passed());  // the stream itself matches
+  EXPECT_GE(b.k.r.cycles - b.k.r.last_out_cycle, 20000u);
+  EXPECT_EQ(b.k.stats[7] + 1, d.want[7]);
+  EXPECT_EQ(b.k.stats, a.k.stats);
+}
+
 // The checker can fail: one bit of the depth code of fragment 30 flipped in the expectation.
 TEST(Unit, CorruptedExpectedFragmentIsReported) {
   const fxr::Scene sc = fxr::load_scene(std::string(FXR_SOURCE_DIR) + "/scenes/clip_triangles.json");
