@@ -124,6 +124,21 @@ uint64_t add_weight(uint64_t a, uint64_t b) { return std::min(a + b, kWeightCap)
 // a sample; the grazing plane's steps are 64–130 rows, sampled every row or two).
 constexpr int64_t kSplitSamples = 64;
 
+// The members of a set-up triangle's TriangleEquations that stages 6–10 read, packed: a batch
+// buffer holds these, its varying planes in arrays beside them (Batch), and a thread unpacks a
+// triangle into a TriangleEquations of its own before rasterising it. A TriangleEquations holds
+// kMaxVaryings planes (1,440 bytes, of which the bunny's raster read 6 lines at 0 varyings, 9 at
+// 2, spread over the record): the batch buffers took 2.9 MB per batch of 2,048 and their lines
+// were cold when rasterised (docs/speed.md "Session 12: threads").
+struct PackedEq {
+  TriSetup edges;
+  DepthSetup depth;
+  Plane den;
+  uint32_t prim = 0;
+  int den_exp = 0;
+  int n = 0;
+};
+
 // A set-up triangle in a batch buffer, beside its equations.
 struct EqMeta {
   uint64_t start = 0;      // weight of the chunk's earlier triangles
@@ -136,7 +151,9 @@ struct EqMeta {
 // thread comes first; on cache lines of its own: the other parity's chunks are being filled
 // while the threads read this one's).
 struct alignas(kCacheLineBytes) Batch {
-  std::vector<TriangleEquations> eqs;  // grown, never shrunk: a frame reuses the last one's
+  std::vector<PackedEq> eqs;  // grown, never shrunk: a frame reuses the last one's
+  std::vector<Plane> num;     // eqs[i]'s varying planes num[i · nv + m] …
+  std::vector<int> num_exp;   // … and their exponents
   std::vector<EqMeta> meta;
   size_t n = 0;
   uint64_t weight = 0;
@@ -152,19 +169,37 @@ struct Run {
 unsigned __int128 run_key(uint64_t tri, int64_t row) { return (unsigned __int128)tri << 64 | (uint64_t)row; }
 bool run_before(const Run& a, const Run& b) { return a.key < b.key; }
 
-// The members of a set-up triangle stages 6–10 read (the planes of `nv` varyings): a batch
-// buffer copies only these (a TriangleEquations holds kMaxVaryings planes).
-void copy_used(const TriangleEquations& a, int nv, TriangleEquations& b) {
-  b.prim = a.prim;
-  b.edges = a.edges;
-  b.depth = a.depth;
-  b.interp.den = a.interp.den;
-  b.interp.den_exp = a.interp.den_exp;
-  b.interp.n = a.interp.n;
+// Packs `a` (its first nv planes) as triangle i of batch b (room made by the caller).
+void pack_used(const TriangleEquations& a, int nv, Batch& b, size_t i) {
+  PackedEq& p = b.eqs[i];
+  p.prim = a.prim;
+  p.edges = a.edges;
+  p.depth = a.depth;
+  p.den = a.interp.den;
+  p.den_exp = a.interp.den_exp;
+  p.n = a.interp.n;
   for (int m = 0; m < nv; ++m) {
-    b.interp.num[m] = a.interp.num[m];
-    b.interp.num_exp[m] = a.interp.num_exp[m];
+    b.num[i * (size_t)nv + (size_t)m] = a.interp.num[m];
+    b.num_exp[i * (size_t)nv + (size_t)m] = a.interp.num_exp[m];
   }
+}
+
+// Triangle i of batch b into `t` (the members pack_used kept; the others are not read by stages
+// 6–10). t.serial stays 0: FragmentChain::rows begins the fused span per call (a record edited by
+// hand, model/stages/interp_span.hpp).
+void unpack_used(const Batch& b, size_t i, int nv, TriangleEquations& t) {
+  const PackedEq& p = b.eqs[i];
+  t.prim = p.prim;
+  t.edges = p.edges;
+  t.depth = p.depth;
+  t.interp.den = p.den;
+  t.interp.den_exp = p.den_exp;
+  t.interp.n = p.n;
+  for (int m = 0; m < nv; ++m) {
+    t.interp.num[m] = b.num[i * (size_t)nv + (size_t)m];
+    t.interp.num_exp[m] = b.num_exp[i * (size_t)nv + (size_t)m];
+  }
+  t.serial = 0;
 }
 
 // Thread 0's sink in a split step: records written straight into the frame's store, in its
@@ -398,7 +433,11 @@ class FrameRun {
       }
     }
     for (int q = 0; q < 2; ++q)
-      for (Batch& b : *chunks_[q]) b.route.resize((size_t)T_);
+      for (Batch& b : *chunks_[q]) {
+        b.route.resize((size_t)T_);
+        // Room for the planes of this frame's varying count (the last frame's may differ).
+        b.num.resize(b.eqs.size() * (size_t)nv_), b.num_exp.resize(b.eqs.size() * (size_t)nv_);
+      }
     // The frame's store grows between steps (serial); a frame like the last needs no growth.
     if (keep_) keep_->reserve(pool.last_records);
     // One vertex cache table for all the threads (a thread's own would miss the vertices the
@@ -449,6 +488,8 @@ class FrameRun {
     std::optional<FragmentChain<NoTaps>> direct_chain;  // … and the chain writing them
     std::vector<SetupTriangle> pieces;
     InputTriangle in;
+    // The triangle being rasterised, unpacked from its batch buffer (unpack_used).
+    const std::unique_ptr<TriangleEquations> eq(new TriangleEquations);
     for (;;) {
       if (!failed_.load(std::memory_order_relaxed)) {
         try {
@@ -459,10 +500,10 @@ class FrameRun {
             phase(w, ThreadPhase::Raster);
             to_store.retarget(me.step[ctl_.rec_parity].store);
             if (!chain) chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, records_ ? &to_store : nullptr, taps);
-            raster(w, *chain, ctl_.split);
+            raster(w, *chain, ctl_.split, *eq);
             if (ctl_.split) {
               if (!direct_chain) direct_chain.emplace(cfg_, st_, me.stats, f_.depth.data(), f_.width, &window, taps);
-              raster_split(w, *chain, *direct_chain, window);
+              raster_split(w, *chain, *direct_chain, window, *eq);
             }
           }
           if (ctl_.setup >= 0) {
@@ -565,10 +606,18 @@ class FrameRun {
     b.n = 0;
     b.weight = 0;
     for (std::vector<size_t>& r : b.route) r.clear();
+    // The input triangles themselves kInputPrefetchAhead ahead (their key words are hashed for
+    // the vertex cache's prefetch), as UnitChain::draw_all; the chunk's first ones at its start.
+    const auto prefetch_input = [&](size_t p) {
+      const char* t = reinterpret_cast<const char*>(&tris_[p]);
+      for (size_t o = 0; o < sizeof(ClipTriangle); o += kInputPrefetchLine) __builtin_prefetch(t + o);
+    };
+    for (size_t p = p0; p < std::min(p1, p0 + kInputPrefetchAhead); ++p) prefetch_input(p);
     // The vertex cache's slots fetched kVertexCachePrefetchAhead primitives ahead, as
     // UnitChain::draw_all (a hint: no effect on any output).
     for (size_t p = p0; p < std::min(p1, p0 + kVertexCachePrefetchAhead); ++p) geometry.prefetch(tris_[p]);
     for (size_t p = p0; p < p1; ++p) {
+      if (p + kInputPrefetchAhead < p1) prefetch_input(p + kInputPrefetchAhead);
       if (p + kVertexCachePrefetchAhead < p1) geometry.prefetch(tris_[p + kVertexCachePrefetchAhead]);
       ++me.stats.prims_in;
       // The vertex cache's triangle without the geometry chain's copies, as UnitChain::draw.
@@ -593,9 +642,12 @@ class FrameRun {
   void add_triangle(Batch& b, const TriangleEquations& eq) {
     const TriSetup& t = eq.edges;
     if (t.y1 < t.y0 || t.x1 < t.x0) return;  // no candidate pixel: nothing to rasterise
-    if (b.n == b.eqs.size()) b.eqs.emplace_back(), b.meta.emplace_back();
+    if (b.n == b.eqs.size()) {
+      b.eqs.emplace_back(), b.meta.emplace_back();
+      b.num.resize(b.eqs.size() * (size_t)nv_), b.num_exp.resize(b.eqs.size() * (size_t)nv_);
+    }
     const size_t i = b.n++;
-    copy_used(eq, nv_, b.eqs[i]);
+    pack_used(eq, nv_, b, i);
     EqMeta& m = b.meta[i];
     const uint64_t rows = (uint64_t)((int64_t)t.y1 - t.y0 + 1), width = (uint64_t)((int64_t)t.x1 - t.x0 + 1);
     const uint64_t weight = rows * width;
@@ -618,18 +670,25 @@ class FrameRun {
     return band_shift_ >= 0 ? r >> band_shift_ : r / R_;
   }
 
-  // The members of a routed triangle the raster step reads first, fetched ahead.
-  static void prefetch(const Batch& b, size_t i) {
+  // A routed triangle's packed members and planes (unpack_used), fetched ahead.
+  void prefetch(const Batch& b, size_t i) const {
     const char* p = reinterpret_cast<const char*>(&b.eqs[i]);
-    const size_t used = offsetof(TriangleEquations, interp) + offsetof(InterpSetup, num);
-    for (size_t o = 0; o < used; o += kCacheLineBytes) __builtin_prefetch(p + o);
+    for (size_t o = 0; o < sizeof(PackedEq); o += kCacheLineBytes) __builtin_prefetch(p + o);
+    __builtin_prefetch(p + sizeof(PackedEq) - 1);
+    if (nv_ > 0) {
+      const char* n = reinterpret_cast<const char*>(&b.num[i * (size_t)nv_]);
+      const size_t bytes = (size_t)nv_ * sizeof(Plane);
+      for (size_t o = 0; o < bytes; o += kCacheLineBytes) __builtin_prefetch(n + o);
+      __builtin_prefetch(n + bytes - 1);
+      __builtin_prefetch(&b.num_exp[i * (size_t)nv_]);
+    }
     __builtin_prefetch(&b.meta[i]);
   }
 
   // Stages 6–10 on this thread's bands of the items of batch ctl_.raster that start below
   // ctl_.raster_end (skip: none, only the cursor moves past them: a split step); then
   // me.next_start is where its next item starts.
-  void raster(int w, FragmentChain<NoTaps>& chain, bool skip) {
+  void raster(int w, FragmentChain<NoTaps>& chain, bool skip, TriangleEquations& eq) {
     Worker& me = W_[(size_t)w];
     const int q = (int)(ctl_.raster & 1);
     const uint64_t end = ctl_.raster_end;
@@ -645,12 +704,13 @@ class FrameRun {
       for (; me.cur_r < list.size(); ++me.cur_r, me.cur_k = 0) {
         const size_t i = list[me.cur_r];
         const EqMeta& m = b.meta[i];
-        const TriangleEquations& eq = b.eqs[i];
-        const int64_t y0 = eq.edges.y0, y1 = eq.edges.y1;
-        const uint64_t width = (uint64_t)((int64_t)eq.edges.x1 - eq.edges.x0 + 1);
+        const TriSetup& e = b.eqs[i].edges;
+        const int64_t y0 = e.y0, y1 = e.y1;
+        const uint64_t width = (uint64_t)((int64_t)e.x1 - e.x0 + 1);
         const uint64_t start = add_weight(base, m.start);
         const int64_t items = m.items;
         if (!skip && me.cur_r + 1 < list.size()) prefetch(b, list[me.cur_r + 1]);
+        bool unpacked = false;  // eq holds triangle i (unpacked at its first band in this call)
         for (; (int64_t)me.cur_k < items; ++me.cur_k) {
           const int64_t ra = y0 + (int64_t)me.cur_k * m.chunk, rb = std::min(y1, ra + m.chunk - 1);
           const uint64_t at = add_weight(start, me.cur_k * (uint64_t)m.chunk * width);
@@ -664,6 +724,7 @@ class FrameRun {
             const int64_t lo = std::max(ra, vy + band * R_), hi = std::min(rb, vy + band * R_ + R_ - 1);
             const size_t before = store.size();
             wait_rows(hi - vy);
+            if (!unpacked) unpack_used(b, i, nv_, eq), unpacked = true;
             chain.rows(eq, (int)lo, (int)hi);
             if (store.size() > before) runs.push_back({run_key(tri0 + i, lo - vy), before, store.size() - before});
           }
@@ -682,10 +743,10 @@ class FrameRun {
   // their step stores as one run. In the step that fills a new depth buffer the rows are claimed
   // instead, a piece of band_rows rows at a time, by whichever thread is free (thread 0 once it
   // has filled).
-  void raster_split(int w, FragmentChain<NoTaps>& chain, FragmentChain<NoTaps>& direct, WindowSink& window) {
+  void raster_split(int w, FragmentChain<NoTaps>& chain, FragmentChain<NoTaps>& direct, WindowSink& window,
+                    TriangleEquations& eq) {
     const int q = (int)(ctl_.raster & 1);
-    const Batch& b = (*chunks_[q])[ctl_.split_chunk];
-    const TriangleEquations& eq = b.eqs[ctl_.split_tri];
+    unpack_used((*chunks_[q])[ctl_.split_chunk], ctl_.split_tri, nv_, eq);
     if (ctl_.clear_new) {  // the step that fills a new depth buffer: pieces claimed in row order
       const int64_t ra = ctl_.split_rows[0], rb = ctl_.split_rows[(size_t)T_] - 1;
       for (;;) {
