@@ -73,7 +73,7 @@ void spin_then_wait(std::mutex& m, std::condition_variable& cv, Ready&& ready) {
   });
 }
 
-// A short wait on a state published without a lock, a band at a time (a new depth buffer's rows:
+// A short wait on a state published without a lock, P_ rows at a time (a new depth buffer's rows:
 // a sleeping waiter would need the filling thread to take the lock and notify at every band):
 // polls, then yields the core until ready() holds (more threads than cores: the thread waited
 // for gets to run).
@@ -141,8 +141,8 @@ struct PackedEq {
 
 // A set-up triangle in a batch buffer, beside its equations.
 struct EqMeta {
-  uint64_t start = 0;      // weight of the chunk's earlier triangles
-  int64_t b0 = 0, b1 = 0;  // bands of its rows y0 and y1
+  uint64_t start = 0;            // weight of the chunk's earlier triangles
+  int64_t b0[2] = {}, b1[2] = {};  // bands of its rows y0 and y1, fine and coarse (FrameRun::map_)
   int64_t chunk = 0;       // rows per raster item (all its rows when it weighs ≤ step_pixels) …
   int64_t items = 0;       // … and the number of items
 };
@@ -157,7 +157,9 @@ struct alignas(kCacheLineBytes) Batch {
   std::vector<EqMeta> meta;
   size_t n = 0;
   uint64_t weight = 0;
-  std::vector<std::vector<size_t>> route;  // route[c]: the triangles with a band of thread c
+  uint64_t rows = 0;  // the candidate rows of its triangles, summed (the batch's band map)
+  // route[g][c]: the triangles with a band of thread c in band map g (0 fine, 1 coarse).
+  std::vector<std::vector<size_t>> route[2];
 };
 
 // Fragments of one thread in a raster step: `count` records of triangle `tri` (sequence number
@@ -396,12 +398,14 @@ class FrameRun {
   FrameRun(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris, FrameOutput& f,
            FragmentStore* keep, FragmentSink* sink, const ThreadOptions& opts, Pool& pool)
       : cfg_(cfg), st_(st), tris_(tris), f_(f), keep_(keep), sink_(sink), obs_(opts.observer), W_(pool.workers()),
-        chunks_{&pool.chunks[0], &pool.chunks[1]}, T_((int)W_.size()), R_(opts.band_rows), B_((size_t)opts.batch_prims),
+        chunks_{&pool.chunks[0], &pool.chunks[1]}, T_((int)W_.size()), R_(opts.band_rows),
+        P_(std::min<int64_t>(opts.band_rows, kThreadFineBandRows)), band_rows_{P_, R_}, B_((size_t)opts.batch_prims),
         C_(std::min((size_t)opts.setup_chunk_prims, B_)), step_((uint64_t)opts.step_pixels),
         records_(keep != nullptr || sink != nullptr), nv_(records_ ? st.num_varyings : 0),
         nbatches_((int64_t)((tris.size() + B_ - 1) / B_)), barrier_(T_) {
-    for (int k = 0; k < 31; ++k)
-      if (R_ == (int64_t)1 << k) band_shift_ = k;
+    for (int g = 0; g < 2; ++g)
+      for (int k = 0; k < 31; ++k)
+        if (band_rows_[g] == (int64_t)1 << k) band_shift_[g] = k;
     const size_t most = (B_ + C_ - 1) / C_;  // chunks in a batch
     for (int q = 0; q < 2; ++q) {
       if (chunks_[q]->size() != most) chunks_[q]->resize(most);
@@ -434,7 +438,7 @@ class FrameRun {
     }
     for (int q = 0; q < 2; ++q)
       for (Batch& b : *chunks_[q]) {
-        b.route.resize((size_t)T_);
+        b.route[0].resize((size_t)T_), b.route[1].resize((size_t)T_);
         // Room for the planes of this frame's varying count (the last frame's may differ).
         b.num.resize(b.eqs.size() * (size_t)nv_), b.num_exp.resize(b.eqs.size() * (size_t)nv_);
       }
@@ -536,7 +540,7 @@ class FrameRun {
     if (w != 0) phase(w, ThreadPhase::Done);
   }
 
-  // Thread 0: the rest of a deferred new depth buffer, a band at a time, each published
+  // Thread 0: the rest of a deferred new depth buffer, P_ rows at a time, each published
   // (clear_rows_: rows from the viewport's bottom) for the threads waiting to rasterise it.
   void new_depth_rows() {
     const size_t words = (size_t)f_.width * (size_t)f_.height;
@@ -544,7 +548,7 @@ class FrameRun {
     phase(0, ThreadPhase::Clear);
     const uint32_t code = depth_max_code(cfg_.raster);
     for (int64_t r = (int64_t)(f_.depth.size() / (size_t)f_.width); r < f_.height;) {
-      const int64_t n = std::min<int64_t>(R_, f_.height - r);
+      const int64_t n = std::min<int64_t>(P_, f_.height - r);
       f_.depth.insert(f_.depth.end(), (size_t)(n * f_.width), code);  // within the reserved capacity
       r += n;
       clear_rows_.store(r, std::memory_order_release);
@@ -605,7 +609,9 @@ class FrameRun {
     Worker& me = W_[(size_t)w];
     b.n = 0;
     b.weight = 0;
-    for (std::vector<size_t>& r : b.route) r.clear();
+    for (int g = 0; g < 2; ++g)
+      for (std::vector<size_t>& r : b.route[g]) r.clear();
+    b.rows = 0;
     // The input triangles themselves kInputPrefetchAhead ahead (their key words are hashed for
     // the vertex cache's prefetch), as UnitChain::draw_all; the chunk's first ones at its start.
     const auto prefetch_input = [&](size_t p) {
@@ -654,20 +660,24 @@ class FrameRun {
     m.start = b.weight;
     m.chunk = weight <= step_ ? (int64_t)rows : (int64_t)std::clamp<uint64_t>(step_ / width, 1, rows);
     m.items = ((int64_t)rows - 1) / m.chunk + 1;
-    m.b0 = band_of(t.y0);
-    m.b1 = band_of(t.y1);
     b.weight = add_weight(b.weight, weight);
-    if (m.b1 - m.b0 + 1 >= T_) {
-      for (std::vector<size_t>& r : b.route) r.push_back(i);
-    } else {
-      for (int64_t band = m.b0; band <= m.b1; ++band) b.route[(uint32_t)band % (uint32_t)T_].push_back(i);
+    b.rows += rows;
+    for (int g = 0; g < 2; ++g) {  // routed in both band maps (decide() picks the batch's)
+      m.b0[g] = band_of(t.y0, g);
+      m.b1[g] = band_of(t.y1, g);
+      std::vector<std::vector<size_t>>& route = b.route[g];
+      if (m.b1[g] - m.b0[g] + 1 >= T_) {
+        for (std::vector<size_t>& r : route) r.push_back(i);
+      } else {
+        for (int64_t band = m.b0[g]; band <= m.b1[g]; ++band) route[(uint32_t)band % (uint32_t)T_].push_back(i);
+      }
     }
   }
 
-  // The band of row y (in the viewport: y ≥ viewport_y).
-  int64_t band_of(int64_t y) const {
+  // The band of row y (in the viewport: y ≥ viewport_y) in band map g.
+  int64_t band_of(int64_t y, int g) const {
     const int64_t r = y - st_.viewport_y;
-    return band_shift_ >= 0 ? r >> band_shift_ : r / R_;
+    return band_shift_[g] >= 0 ? r >> band_shift_[g] : r / band_rows_[g];
   }
 
   // A routed triangle's packed members and planes (unpack_used), fetched ahead.
@@ -691,6 +701,8 @@ class FrameRun {
   void raster(int w, FragmentChain<NoTaps>& chain, bool skip, TriangleEquations& eq) {
     Worker& me = W_[(size_t)w];
     const int q = (int)(ctl_.raster & 1);
+    const int g = map_[q];
+    const int64_t R = band_rows_[g];
     const uint64_t end = ctl_.raster_end;
     FragmentStore& store = me.step[ctl_.rec_parity].store;
     std::vector<Run>& runs = me.step[ctl_.rec_parity].runs;
@@ -699,7 +711,7 @@ class FrameRun {
     const int64_t vy = st_.viewport_y;
     for (; me.cur_p < nchunks_[q]; ++me.cur_p, me.cur_r = 0) {
       const Batch& b = (*chunks_[q])[me.cur_p];
-      const std::vector<size_t>& list = b.route[(size_t)w];
+      const std::vector<size_t>& list = b.route[g][(size_t)w];
       const uint64_t base = base_weight_[q][me.cur_p], tri0 = base_tri_[q][me.cur_p];
       for (; me.cur_r < list.size(); ++me.cur_r, me.cur_k = 0) {
         const size_t i = list[me.cur_r];
@@ -719,9 +731,9 @@ class FrameRun {
             return;
           }
           if (skip) continue;
-          const int64_t b0 = items == 1 ? m.b0 : band_of(ra), b1 = items == 1 ? m.b1 : band_of(rb);
+          const int64_t b0 = items == 1 ? m.b0[g] : band_of(ra, g), b1 = items == 1 ? m.b1[g] : band_of(rb, g);
           for (int64_t band = b0 + (int64_t)(((uint32_t)w + (uint32_t)T_ - (uint32_t)b0 % (uint32_t)T_) % (uint32_t)T_); band <= b1; band += T_) {
-            const int64_t lo = std::max(ra, vy + band * R_), hi = std::min(rb, vy + band * R_ + R_ - 1);
+            const int64_t lo = std::max(ra, vy + band * R), hi = std::min(rb, vy + band * R + R - 1);
             const size_t before = store.size();
             wait_rows(hi - vy);
             if (!unpacked) unpack_used(b, i, nv_, eq), unpacked = true;
@@ -741,7 +753,7 @@ class FrameRun {
   // (counted here by traversal: at least the records they keep, so the parts never overlap; equal
   // when no fragment of theirs fails the depth test, else decide() closes the gap); without, into
   // their step stores as one run. In the step that fills a new depth buffer the rows are claimed
-  // instead, a piece of band_rows rows at a time, by whichever thread is free (thread 0 once it
+  // instead, a piece of P_ rows at a time, by whichever thread is free (thread 0 once it
   // has filled).
   void raster_split(int w, FragmentChain<NoTaps>& chain, FragmentChain<NoTaps>& direct, WindowSink& window,
                     TriangleEquations& eq) {
@@ -750,9 +762,9 @@ class FrameRun {
     if (ctl_.clear_new) {  // the step that fills a new depth buffer: pieces claimed in row order
       const int64_t ra = ctl_.split_rows[0], rb = ctl_.split_rows[(size_t)T_] - 1;
       for (;;) {
-        const int64_t lo = ra + (int64_t)next_piece_.fetch_add(1, std::memory_order_relaxed) * R_;
+        const int64_t lo = ra + (int64_t)next_piece_.fetch_add(1, std::memory_order_relaxed) * P_;
         if (lo > rb) return;
-        split_rows(w, chain, eq, lo, std::min(rb, lo + R_ - 1));
+        split_rows(w, chain, eq, lo, std::min(rb, lo + P_ - 1));
       }
     }
     const int64_t lo = ctl_.split_rows[(size_t)w], hi = ctl_.split_rows[(size_t)w + 1] - 1;
@@ -914,6 +926,14 @@ class FrameRun {
         tsum += b.n;
       }
       batch_empty_[q] = tsum == 0;
+      // Coarse bands when the batch's triangles are on average shorter than a fine band (few
+      // straddle a coarse band: each straddle is rasterised by two threads), fine ones otherwise
+      // (a raster step of a few tall triangles spans few coarse bands: one thread would get most
+      // of it). docs/speed.md "Session 12: threads".
+      uint64_t rows = 0;
+      for (size_t c = 0; c < nchunks_[q]; ++c) rows += (*chunks_[q])[c].rows;
+      map_[q] = rows < tsum * (uint64_t)P_ ? 1 : 0;
+      if (obs_) obs_->batch_bands(ctl_.setup, (int)band_rows_[map_[q]]);
       set_up_ = ctl_.setup + 1;
       ctl_.setup = -1;
     }
@@ -1003,7 +1023,7 @@ class FrameRun {
     }
     ctl_.split_rows.assign((size_t)T_ + 1, rb + 1);
     ctl_.split_rows[0] = ra;
-    if (ctl_.clear_new) {  // rows claimed a band_rows piece at a time, thread 0 once it has filled
+    if (ctl_.clear_new) {  // rows claimed a P_-row piece at a time, thread 0 once it has filled
       ctl_.split_rows[1] = ra;  // the new depth buffer (its part: none written straight)
       next_piece_.store(0, std::memory_order_relaxed);
     }
@@ -1036,7 +1056,10 @@ class FrameRun {
   std::vector<Worker>& W_;
   std::vector<Batch>* const chunks_[2];  // the pool's chunk buffers, by batch parity
   const int T_;
-  const int64_t R_;
+  const int64_t R_;  // rows of a coarse band (of a band when filling a reused depth buffer)
+  const int64_t P_;  // rows of a fine band; of a new depth buffer published at a time (and of a
+                     // piece claimed then)
+  const int64_t band_rows_[2];  // the band maps' heights: fine (P_), coarse (R_)
   const size_t B_, C_;
   const uint64_t step_;
   const bool records_;
@@ -1052,7 +1075,8 @@ class FrameRun {
   alignas(kCacheLineBytes) std::atomic<uint64_t> next_piece_{0};  // that step's next piece of rows
   char pad3_[kCacheLineBytes - sizeof(std::atomic<uint64_t>)];
   SharedVertexTable* vertices_ = nullptr;  // the threads' vertex cache table, or none
-  int band_shift_ = -1;  // log2 band_rows when a power of two
+  int band_shift_[2] = {-1, -1};  // log2 band_rows_[g] when a power of two
+  int map_[2] = {0, 0};  // the band map of each batch parity's batch (0 fine, 1 coarse): decide()
 
   // The step every thread runs next; written by decide() only, between two steps.
   struct Control {

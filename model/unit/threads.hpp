@@ -9,10 +9,12 @@
 //     in the step sets up more; a thread's chunks are mostly consecutive), run stages 1–5 on a
 //     chunk's primitives (a pure function of the primitive), count each primitive's disposition
 //     and route each set-up triangle to the threads owning one of its bands;
-//   - the window rows are cut into bands of `band_rows` rows, band b (from the viewport's bottom)
-//     belongs to thread b mod threads: a depth-buffer word is touched by one thread only, in the
-//     sequential order, so the depth buffer, every depth-test result and every fragment are
-//     those of the sequential unit;
+//   - the window rows are cut into bands (of `band_rows` rows, or fewer for a batch of tall
+//     triangles: kThreadFineBandRows, chosen per batch after its setup; each set-up triangle is
+//     routed in both band maps), band b (from the viewport's bottom) belongs to thread b mod
+//     threads: within a step a depth-buffer word is touched by one thread only, in the
+//     sequential order (the barrier between two steps orders the rest), so the depth buffer,
+//     every depth-test result and every fragment are those of the sequential unit;
 //   - a batch is rasterised in steps of about `step_pixels` candidate pixels: the triangles'
 //     bounding-box rows, in draw order, weighted by their width; a large triangle is cut into
 //     row chunks (the grazing plane of bench/peer_bench is two triangles). Every thread derives
@@ -33,9 +35,10 @@
 //     depth-test failures is closed between the steps), when the store has room for the whole
 //     step's candidate pixels, else into its step store to be copied in the next step
 //     (docs/speed.md "Session 10: threads", "Session 11: threads");
-//   - a new depth buffer is filled by the calling thread in the first raster step (step 1), a
-//     band at a time, while the others rasterise the rows already filled (that step's rows of a
-//     split step are claimed in pieces of band_rows rows by whichever thread is free).
+//   - a new depth buffer is filled by the calling thread in the first raster step (step 1),
+//     min(band_rows, kThreadFineBandRows) rows at a time, while the others rasterise the rows
+//     already filled (that step's rows of a split step are claimed in pieces of as many rows by
+//     whichever thread is free).
 // The setup of batch k + 1 runs in the first raster step of batch k (two equation buffers). The
 // worker threads and their buffers persist between frames (one pool per calling thread).
 #pragma once
@@ -50,8 +53,14 @@
 
 namespace fxr {
 
-// Rows per band: the bands go round-robin to the threads (docs/speed.md: measured choice).
-inline constexpr int kThreadBandRows = 8;
+// Rows per band: the bands go round-robin to the threads. A batch whose triangles are on average
+// shorter than a fine band is rasterised in bands of band_rows (coarse: few triangles straddle
+// two threads' bands), any other in bands of min(band_rows, kThreadFineBandRows) (fine: a step of
+// a few tall triangles is shared evenly). docs/speed.md "Session 12: threads": measured choice.
+inline constexpr int kThreadBandRows = 32;
+// The fine bands' rows; also the rows of a new depth buffer filled and published at a time in the
+// first raster step (and of a piece of a split step's rows claimed in that step).
+inline constexpr int kThreadFineBandRows = 8;
 // Primitives per batch (docs/speed.md).
 inline constexpr int kThreadBatchPrims = 2048;
 // Candidate pixels (bounding-box rows × width) per raster step (docs/speed.md: a step's records
@@ -79,6 +88,9 @@ class ThreadObserver {
   virtual ~ThreadObserver() = default;
   // Called by thread `thread` (0: the calling thread) when it enters phase `p`.
   virtual void phase(int thread, ThreadPhase p) = 0;
+  // Called once per batch (in draw order, numbered from 0) before its raster: the height of the
+  // bands it is rasterised in.
+  virtual void batch_bands(int64_t /*batch*/, int /*band_rows*/) {}
 };
 
 struct ThreadOptions {

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <cstdlib>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -202,6 +203,49 @@ TEST(Threads, RandomOverlapsUnderEveryDepthFunctionScissorAndCulling) {
     check_case(c, opts);
     ++i;
   }
+}
+
+namespace {
+
+// The band heights the batches of a frame were rasterised in (ThreadObserver::batch_bands).
+class BandCounter final : public ThreadObserver {
+ public:
+  void phase(int, ThreadPhase) override {}
+  void batch_bands(int64_t, int band_rows) override { ++seen[band_rows]; }
+  std::map<int, int> seen;
+};
+
+}  // namespace
+
+// Batches of tall triangles and batches of triangles a few pixels high in one frame: each batch
+// is rasterised in its own band map (fine bands for the tall ones, coarse for the small), so the
+// same depth words change owner between steps; every frame equals the sequential unit's.
+TEST(Threads, EachBatchChoosesItsBandMap) {
+  Case c = random_case(11, 60, 2);
+  c.name = "tall then small";
+  for (size_t t = 30; t < c.tris.size(); ++t) {  // the second half shrunk about its centre (NDC)
+    float cx = 0, cy = 0;
+    for (const ClipVertex& v : c.tris[t].v) cx += v.pos[0] / v.pos[3] / 3, cy += v.pos[1] / v.pos[3] / 3;
+    for (ClipVertex& v : c.tris[t].v) {
+      const float w = v.pos[3];
+      v.pos[0] = (cx + (v.pos[0] / w - cx) * 0.05f) * w, v.pos[1] = (cy + (v.pos[1] / w - cy) * 0.05f) * w;
+    }
+  }
+  const FrameOutput want = run_raster_unit(c.cfg, c.st, c.tris);
+  for (int t : {2, 3})
+    for (int rows : {kThreadBandRows, 16})
+      for (int step : {37, kThreadStepPixels}) {
+        BandCounter bands;
+        ThreadOptions o;
+        o.threads = t, o.band_rows = rows, o.batch_prims = 10, o.step_pixels = step, o.setup_chunk_prims = 3;
+        o.observer = &bands;
+        const std::string what = "threads " + std::to_string(t) + " band_rows " + std::to_string(rows) +
+                                 " step_pixels " + std::to_string(step);
+        expect_same_frame(want, run_raster_unit(c.cfg, c.st, c.tris, o), 2, what);
+        EXPECT_GT(bands.seen[rows], 0) << what;                      // the small triangles' batches
+        EXPECT_GT(bands.seen[kThreadFineBandRows], 0) << what;       // the tall ones'
+        EXPECT_EQ(bands.seen.size(), 2u) << what;
+      }
 }
 
 TEST(Threads, InvalidOptionsAreRejected) {
