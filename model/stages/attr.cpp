@@ -399,48 +399,62 @@ AttrTerms64 attr_edge_terms64_int(const Config& cfg, const SetupTriangle& tri, c
 }
 }  // namespace
 
-Plane attr_plane(const AttrEdgeTerms& t, const int64_t q[3]) {
-  Plane p;
-  p.i0 = t.i0;
-  p.j0 = t.j0;
+void attr_plane_to(const AttrEdgeTerms& t, const int64_t q[3], Plane& out) {
+  // Summed in locals and stored once (a Plane returned through the stack, written as 8-byte
+  // words and read back by 16-byte loads, stalled on store forwarding: nearly half of
+  // build_interp_planes' samples, docs/speed.md "Session 12: per triangle").
+  i128 c = 0, dx = 0, dy = 0;
   if (t.fits64) {
     for (int k = 0; k < 3; ++k) {  // int64 × int64: GCC's one widening imul
-      p.dx += (i128)t.dx64[k] * q[k];
-      p.dy += (i128)t.dy64[k] * q[k];
-      p.c += (i128)t.e064[k] * q[k];
+      dx += (i128)t.dx64[k] * q[k];
+      dy += (i128)t.dy64[k] * q[k];
+      c += (i128)t.e064[k] * q[k];
     }
-    return p;
+  } else {
+    for (int k = 0; k < 3; ++k) {
+      dx += t.dx[k] * q[k];
+      dy += t.dy[k] * q[k];
+      c += t.e0[k] * q[k];
+    }
   }
-  for (int k = 0; k < 3; ++k) {
-    p.dx += t.dx[k] * q[k];
-    p.dy += t.dy[k] * q[k];
-    p.c += t.e0[k] * q[k];
-  }
+  out.c = c;
+  out.dx = dx;
+  out.dy = dy;
+  out.i0 = t.i0;
+  out.j0 = t.j0;
+}
+
+Plane attr_plane(const AttrEdgeTerms& t, const int64_t q[3]) {
+  Plane p;
+  attr_plane_to(t, q, p);
   return p;
 }
 
 namespace {
-DepthSetup attr_depth_setup_terms(const Config& cfg, const SetupTriangle& tri, i128 area2, const AttrEdgeTerms& t) {
+// The depth plane written into `d` (attr_plane_setup: into the triangle's record; a DepthSetup
+// returned and copied stalled on store forwarding, docs/speed.md "Session 12: per triangle").
+void attr_depth_setup_terms(const Config& cfg, const SetupTriangle& tri, i128 area2, const AttrEdgeTerms& t,
+                            DepthSetup& d) {
   // Vertex values z_k·(2^db − 1) kept to the absolute precision of z_k itself: z_frac_bits − db
   // fraction bits of an LSB (PRECISION IS LOST HERE: ≤ 2^−(z_frac_bits − db + 1) LSB, RNE, the
   // same as the rounding of z_k; 2^−9 LSB at D24). z_frac_bits + 1 signed bits.
   const RasterConfig& rc = cfg.raster;
   int64_t q[3];
   for (int k = 0; k < 3; ++k) q[k] = attr_depth_q(rc, tri.v[k].z);
-  DepthSetup d;
-  d.z = attr_plane(t, q);
+  attr_plane_to(t, q, d.z);
   d.den = area2 << (rc.z_frac_bits - rc.depth_bits());
   d.max_code = (int64_t)depth_max_code(rc);
-  return d;
 }
 void attr_interp_setup_terms(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const AttrEdgeTerms& t,
                              InterpSetup& out) {
-  build_interp_planes(cfg, st, tri, out, [&](const int64_t q[3]) { return attr_plane(t, q); });
+  build_interp_planes(cfg, st, tri, out, [&](const int64_t q[3], Plane& p) { attr_plane_to(t, q, p); });
 }
 }  // namespace
 
 DepthSetup attr_depth_setup(const Config& cfg, const SetupTriangle& tri, const AttrSetup& a) {
-  return attr_depth_setup_terms(cfg, tri, a.area2, attr_edge_terms(a));
+  DepthSetup d;
+  attr_depth_setup_terms(cfg, tri, a.area2, attr_edge_terms(a), d);
+  return d;
 }
 
 bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, bool varyings,
@@ -460,7 +474,7 @@ bool attr_plane_setup(const Config& cfg, const DrawState& st, const SetupTriangl
       break;
     }
   }
-  eq.depth = attr_depth_setup_terms(cfg, tri, area2, t);
+  attr_depth_setup_terms(cfg, tri, area2, t, eq.depth);
   if (varyings) attr_interp_setup_terms(cfg, st, tri, t, eq.interp);
   else eq.interp.n = 0;
   return true;

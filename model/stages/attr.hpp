@@ -135,12 +135,21 @@ AttrTerms64 attr_edge_terms64(const Config& cfg, const SetupTriangle& tri, const
 // multiply) when t.fits64, else i128 × i128. Tests: AttrPlane.* (tests/model/attr_test.cpp),
 // 10^8 random in attr_slow_test.cpp.
 Plane attr_plane(const AttrEdgeTerms& t, const int64_t q[3]);
+// The same written into `out` (no Plane returned through the stack).
+void attr_plane_to(const AttrEdgeTerms& t, const int64_t q[3], Plane& out);
 
 // Contract: the depth plane's vertex value of a vertex with depth z (z_frac_bits):
 // RNE(z·(2^db − 1) / 2^db), i.e. z·(2^db − 1) with z_frac_bits − db fraction bits of an LSB.
+// In int64 words when the product fits and the shift is within shift_round_right's int64 range
+// (the i128 path's template: the same steps; three per triangle, docs/speed.md "Session 12: per
+// triangle"), else in i128.
 inline int64_t attr_depth_q(const RasterConfig& rc, uint64_t z) {
-  const int64_t M = (int64_t)((1u << rc.depth_bits()) - 1);
-  return (int64_t)shift_round((i128)z * M, rc.depth_bits(), Round::HalfEven);  // product < 2^63
+  const int db = rc.depth_bits();
+  const int64_t M = (int64_t)((1u << db) - 1);
+  int64_t p;
+  if (db >= 1 && db <= kInt64ShiftMax && z <= (uint64_t)INT64_MAX && !__builtin_mul_overflow((int64_t)z, M, &p))
+    return detail::shift_round_right<int64_t, uint64_t>(p, db, Round::HalfEven);
+  return (int64_t)shift_round((i128)z * M, db, Round::HalfEven);  // product < 2^63
 }
 
 // Contract: depth_setup (depth.hpp) on the attribute triangle: Z = Σ E'_k·z_k·(2^db − 1),

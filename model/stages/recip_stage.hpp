@@ -51,13 +51,23 @@ StageCost as_stage_cost(const C& c) {
 }
 
 // Stage 3 on one vertex: r = recip(w_c normalised to recip.in_sig_bits); false when the unit
-// flags a zero divisor or an exponent overflow.
-inline bool recip_vertex(const RecipConfig& c, const ClipVtx& v, FxFloat& r) {
+// flags a zero divisor or an exponent overflow. `unit(w)` is the reciprocal unit of c.
+template <class Unit>
+inline bool recip_vertex_with(const RecipConfig& c, const ClipVtx& v, FxFloat& r, Unit&& unit) {
   const FxFloat w = normalize_fx(v.p[3], c.in_sig_bits, Round::HalfEven);
-  const RecipResult rr = recip(c, w);
+  const RecipResult rr = unit(w);
   if (rr.div_by_zero || rr.exp_overflow) return false;
   r = rr.value;
   return true;
+}
+inline bool recip_vertex(const RecipConfig& c, const ClipVtx& v, FxFloat& r) {
+  return recip_vertex_with(c, v, r, [&c](const FxFloat& w) { return recip(c, w); });
+}
+// The same on the caller's unit (the vertex cache keeps one per draw: recip()'s lookup of its
+// thread's unit compared the whole configuration per vertex, docs/speed.md "Session 12: per
+// triangle").
+inline bool recip_vertex(const RecipUnit& u, const ClipVtx& v, FxFloat& r) {
+  return recip_vertex_with(u.config(), v, r, u);
 }
 
 class RecipStage {

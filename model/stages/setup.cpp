@@ -56,25 +56,30 @@ SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const PixelR
     y[k] = v.y * ((int64_t)1 << up);
   }
   // Edge k from v_{k+1} to v_{k+2}. Exact: coefficients < 2^cb, products < 2^(2cb) (int64).
-  // Built in `out` itself (a local array copied into it at the end was read back by 16-byte
-  // loads from 8-byte stores, a store-forwarding stall: a fifth of this function's samples,
-  // docs/speed.md "Session 10: per triangle"); nothing reads `out` when the outcome is not Ok.
-  EdgeEq* const e = out.e;
+  // Formed in locals and written to `out` once, with the winding's sign (a local array copied
+  // into `out` at the end, and later the negation of `out.e` read back by 16-byte loads from
+  // 8-byte stores, stalled on store forwarding: a fifth and a tenth of this function's samples,
+  // docs/speed.md "Session 10: per triangle", "Session 12: per triangle"); nothing reads `out`
+  // when the outcome is not Ok.
+  int64_t ea[3], eb[3], ec[3];
   for (int k = 0; k < 3; ++k) {
     const int a = (k + 1) % 3, b = (k + 2) % 3;
-    e[k].a = y[a] - y[b];
-    e[k].b = x[b] - x[a];
-    e[k].c = x[a] * y[b] - x[b] * y[a];
+    ea[k] = y[a] - y[b];
+    eb[k] = x[b] - x[a];
+    ec[k] = x[a] * y[b] - x[b] * y[a];
   }
   // 2·area = E_0(v_0) (signed; > 0 for counter-clockwise in y-up window space).
-  int64_t area2 = edge_eval(e[0], x[0], y[0]);
+  int64_t area2 = ea[0] * x[0] + eb[0] * y[0] + ec[0];
   if (area2 == 0) return SetupOutcome::CulledZeroArea;
   const bool ccw = area2 > 0;
   const bool front = (ccw == st.front_ccw);
   if ((st.cull == CullMode::Back && !front) || (st.cull == CullMode::Front && front))
     return SetupOutcome::CulledBackface;
-  if (!ccw) {  // normalise the winding: −E of a → b is E of b → a (exact)
-    for (int k = 0; k < 3; ++k) e[k].a = -e[k].a, e[k].b = -e[k].b, e[k].c = -e[k].c;
+  EdgeEq* const e = out.e;
+  if (ccw) {
+    for (int k = 0; k < 3; ++k) e[k].a = ea[k], e[k].b = eb[k], e[k].c = ec[k];
+  } else {  // normalise the winding: −E of a → b is E of b → a (exact)
+    for (int k = 0; k < 3; ++k) e[k].a = -ea[k], e[k].b = -eb[k], e[k].c = -ec[k];
     area2 = -area2;
   }
   // Top-left rule (see the header): the gradient (a, b) points inside.
@@ -106,16 +111,27 @@ SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const PixelR
 
 // ---- planes (stages 7 and 8 read them) ------------------------------------------------------
 
-Plane make_plane(const TriSetup& t, const int64_t q[3]) {
+void make_plane_to(const TriSetup& t, const int64_t q[3], Plane& out) {
   // P(i, j) = Σ_k (a_k·(i·2^g + h) + b_k·(j·2^g + h) + c_k)·q_k, h = 2^(g−1): exact in i128.
+  // Summed in locals and stored once (as attr_plane_to).
   const int64_t h = (int64_t)1 << (t.g - 1);
-  Plane p;
+  i128 c = 0, dx = 0, dy = 0;
   for (int k = 0; k < 3; ++k) {
     const EdgeEq& e = t.e[k];
-    p.dx += (i128)e.a * q[k] * ((i128)1 << t.g);  // signed: a multiply, not a negative <<
-    p.dy += (i128)e.b * q[k] * ((i128)1 << t.g);
-    p.c += (i128)(e.a * h + e.b * h + e.c) * q[k];
+    dx += (i128)e.a * q[k] * ((i128)1 << t.g);  // signed: a multiply, not a negative <<
+    dy += (i128)e.b * q[k] * ((i128)1 << t.g);
+    c += (i128)(e.a * h + e.b * h + e.c) * q[k];
   }
+  out.c = c;
+  out.dx = dx;
+  out.dy = dy;
+  out.i0 = 0;
+  out.j0 = 0;
+}
+
+Plane make_plane(const TriSetup& t, const int64_t q[3]) {
+  Plane p;
+  make_plane_to(t, q, p);
   return p;
 }
 
@@ -165,7 +181,7 @@ Block3 align_block_wide(const FxFloat v[3], int bits) {
 
 void interp_setup(const Config& cfg, const DrawState& st, const SetupTriangle& tri, const TriSetup& t,
                   InterpSetup& out) {
-  build_interp_planes(cfg, st, tri, out, [&](const int64_t q[3]) { return make_plane(t, q); });
+  build_interp_planes(cfg, st, tri, out, [&](const int64_t q[3], Plane& p) { make_plane_to(t, q, p); });
 }
 
 DepthSetup depth_setup(const Config& cfg, const SetupTriangle& tri, const TriSetup& t) {

@@ -188,6 +188,8 @@ struct Plane {
 // Contract: the plane Σ_k E_k(centre(i, j))·q[k] of a set-up triangle; exact.
 //   |q[k]| < 2^qbits gives |P| < 2^(edge_value_bits + qbits + 1) inside the window range.
 Plane make_plane(const TriSetup& t, const int64_t q[3]);
+// The same written into `out` (no Plane returned through the stack).
+void make_plane_to(const TriSetup& t, const int64_t q[3], Plane& out);
 
 // Three values on one block exponent: value_k = q[k] · 2^exp.
 struct Block3 {
@@ -216,8 +218,9 @@ struct InterpSetup {
 };
 
 // The planes of stage 7 from per-vertex block values: D from the block-aligned 1/w (affine:
-// R_k = 1, D = 2A), N_m from the block-aligned v_m/w; `plane(q)` builds Σ E_k·q[k] with the
-// edge functions of the caller's triangle (coverage or attribute positions).
+// R_k = 1, D = 2A), N_m from the block-aligned v_m/w; `plane(q, p)` writes Σ E_k·q[k] with the
+// edge functions of the caller's triangle (coverage or attribute positions) into p (a Plane
+// returned and copied stalled on store forwarding, docs/speed.md "Session 12: per triangle").
 template <class MakePlane>
 void build_interp_planes(const Config& cfg, const DrawState& st, const SetupTriangle& tri, InterpSetup& out,
                          MakePlane&& plane) {
@@ -225,18 +228,18 @@ void build_interp_planes(const Config& cfg, const DrawState& st, const SetupTria
   out.n = st.num_varyings;
   if (st.interp == InterpMode::Affine) {
     const int64_t one[3] = {1, 1, 1};
-    out.den = plane(one);
+    plane(one, out.den);
     out.den_exp = 0;
   } else {
     const FxFloat rw[3] = {tri.v[0].rw, tri.v[1].rw, tri.v[2].rw};
     const Block3 r = align_block(rw, bits);
-    out.den = plane(r.q);
+    plane(r.q, out.den);
     out.den_exp = r.exp;
   }
   for (int m = 0; m < out.n; ++m) {
     const FxFloat vw[3] = {tri.v[0].vw[m], tri.v[1].vw[m], tri.v[2].vw[m]};
     const Block3 b = align_block(vw, bits);
-    out.num[m] = plane(b.q);
+    plane(b.q, out.num[m]);
     out.num_exp[m] = b.exp;
   }
 }

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <vector>
 
@@ -59,13 +60,15 @@ inline constexpr size_t kVertexCachePrefetchAhead = 2;
 // 336-byte fill per vertex computed at 2 varyings, docs/speed.md "Session 11: per triangle").
 // `v`: scratch storage, any contents (its members past the draw's varyings are not read: the
 // caller's one ClipVtx saves a 504-byte zero fill per vertex computed).
+// `unit`: nullptr, or the reciprocal unit of cfg.recip (the cache's, per draw).
 inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardBand& gb, const ClipVertex& in,
-                            SetupVertex& out, ClipVtx& v) {
+                            SetupVertex& out, ClipVtx& v, const RecipUnit* unit = nullptr) {
   bool nan = false, inf = false, replaced = false;
   convert_vertex(in, st.num_varyings, v, nan, inf, replaced);
   if (nan || inf || replaced || outcode(gb, v) != 0) return false;
   FxFloat r;
-  return recip_vertex(cfg.recip, v, r) && snap_vertex_active(cfg, st, v, r, out) == ProjectStatus::Ok;
+  return (unit ? recip_vertex(*unit, v, r) : recip_vertex(cfg.recip, v, r)) &&
+         snap_vertex_active(cfg, st, v, r, out) == ProjectStatus::Ok;
 }
 inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardBand& gb, const ClipVertex& in,
                             SetupVertex& out) {
@@ -438,7 +441,7 @@ class VertexCache {
     }
     ++misses_;
     copy_units<sizeof(uint32_t)>(slot + kKeyOffset, key_bytes(cv), kw_);
-    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_);
+    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_, recip_unit());
     write_head(slot, ok, out);  // seq stays 0 in a table of one cache
     return ok;
   }
@@ -501,7 +504,7 @@ class VertexCache {
       }
     }
     ++misses_;
-    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_);
+    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_, recip_unit());
     uint64_t expect = w0, busy;
     state_seq[1] = seq + 1;  // odd: being written
     std::memcpy(&busy, state_seq, sizeof(uint64_t));
@@ -550,6 +553,13 @@ class VertexCache {
   Pending ring_[kPrefetchRing];
   unsigned ring_next_ = 0;
   ClipVtx scratch_;  // accepted_vertex's working vertex
+  // The reciprocal unit of the draw, made at the first vertex computed (a cache is set up per
+  // primitive by fxr::geometry(): the unit's seed table is not built for nothing).
+  std::unique_ptr<RecipUnit> recip_;
+  const RecipUnit* recip_unit() {
+    if (!recip_) recip_ = std::make_unique<RecipUnit>(cfg_.recip);
+    return recip_.get();
+  }
 };
 
 }  // namespace fxr
