@@ -167,7 +167,7 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
 }
 
 ProjectStatus snap_vertex_active(const Config& cfg, const DrawState& st, const ClipVtx& v, const FxFloat& r,
-                                 SetupVertex& out) {
+                                 SetupVertex& out, bool rw_unread) {
   const RasterConfig& rc = cfg.raster;
   // Perspective divide as exact products (no rounding here).
   const FxProd xn = mul_exact(v.p[0], r), yn = mul_exact(v.p[1], r), zn = mul_exact(v.p[2], r);
@@ -191,7 +191,8 @@ ProjectStatus snap_vertex_active(const Config& cfg, const DrawState& st, const C
     const auto quotient = [&](const FxFloat& n, FxFloat& q) {
       if (!attr_quotient64(n, w, rc.attr_sig_bits, &q)) q = attr_quotient_wide(n, w, rc.attr_sig_bits);
     };
-    quotient(kOne, out.rw);
+    if (rw_unread) out.rw = FxFloat{};
+    else quotient(kOne, out.rw);
     for (int k = 0; k < st.num_varyings; ++k) {
       if (st.interp == InterpMode::Affine) out.vw[k] = normalize_fx(v.v[k], rc.attr_sig_bits, Round::HalfEven);
       else quotient(v.v[k], out.vw[k]);

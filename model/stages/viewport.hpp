@@ -83,8 +83,12 @@ ProjectStatus snap_vertex(const Config& cfg, const DrawState& st, const ClipVtx&
 // k ≥ num_varyings, are left as they are (the vertex cache, whose triangle keeps them zero from
 // its construction: model/unit/vertex_cache.hpp; the fill was 336 bytes per computed vertex at
 // 2 varyings, docs/speed.md "Session 11: per triangle"). Otherwise snap_vertex's.
+// rw_unread: a consumer that reads no rw (a chain whose draw has no varyings: setup builds no
+// 1/w plane then) — with separate attribute positions out.rw is then 0 instead of the exact
+// quotient 1/w_c, a division per vertex saved (docs/speed.md "Session 12: per triangle"); the
+// other fields are snap_vertex's. Without attribute positions rw = r costs nothing and is kept.
 ProjectStatus snap_vertex_active(const Config& cfg, const DrawState& st, const ClipVtx& v, const FxFloat& r,
-                                 SetupVertex& out);
+                                 SetupVertex& out, bool rw_unread = false);
 
 // ---- the stage ------------------------------------------------------------------------------
 

@@ -361,7 +361,11 @@ template <class Taps = NoTaps>
 class UnitChain {
  public:
   UnitChain(const Config& cfg, const DrawState& st, FrameOutput& f, FragmentSink* sink, Taps& taps)
-      : stats_(f.stats), geometry_(cfg, st, taps), fragments_(cfg, st, f, sink, taps) {}
+      : stats_(f.stats), geometry_(cfg, st, taps), fragments_(cfg, st, f, sink, taps) {
+    // Setup reads a vertex's rw for the 1/w plane only, built with a sink and varyings
+    // (SetupStage's with_varyings): otherwise the vertex cache need not compute it.
+    geometry_.vertex_cache().set_rw_unread(sink == nullptr || st.num_varyings <= 0);
+  }
 
   // Contract: draw() of tris[0 … n) in order, primitive numbers first + p. The vertex cache's
   // slots of primitive p + kVertexCachePrefetchAhead are prefetched before primitive p is drawn

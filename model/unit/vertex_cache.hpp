@@ -60,15 +60,16 @@ inline constexpr size_t kVertexCachePrefetchAhead = 2;
 // 336-byte fill per vertex computed at 2 varyings, docs/speed.md "Session 11: per triangle").
 // `v`: scratch storage, any contents (its members past the draw's varyings are not read: the
 // caller's one ClipVtx saves a 504-byte zero fill per vertex computed).
-// `unit`: nullptr, or the reciprocal unit of cfg.recip (the cache's, per draw).
+// `unit`: nullptr, or the reciprocal unit of cfg.recip (the cache's, per draw). rw_unread:
+// snap_vertex_active's (out.rw is then 0 with separate attribute positions).
 inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardBand& gb, const ClipVertex& in,
-                            SetupVertex& out, ClipVtx& v, const RecipUnit* unit = nullptr) {
+                            SetupVertex& out, ClipVtx& v, const RecipUnit* unit = nullptr, bool rw_unread = false) {
   bool nan = false, inf = false, replaced = false;
   convert_vertex(in, st.num_varyings, v, nan, inf, replaced);
   if (nan || inf || replaced || outcode(gb, v) != 0) return false;
   FxFloat r;
   return (unit ? recip_vertex(*unit, v, r) : recip_vertex(cfg.recip, v, r)) &&
-         snap_vertex_active(cfg, st, v, r, out) == ProjectStatus::Ok;
+         snap_vertex_active(cfg, st, v, r, out, rw_unread) == ProjectStatus::Ok;
 }
 inline bool accepted_vertex(const Config& cfg, const DrawState& st, const GuardBand& gb, const ClipVertex& in,
                             SetupVertex& out) {
@@ -267,6 +268,14 @@ class VertexCache {
     shared_ = true;
   }
 
+  // Contract: the caller reads no SetupVertex::rw of this cache's triangles (UnitChain when its
+  // setup builds no 1/w plane: no sink or no varyings). With separate attribute positions the
+  // triangles then carry rw = 0 where stages 1–4 emit the exact 1/w_c (a division per vertex
+  // computed: model only what a scene needs, docs/speed.md "Session 12: per triangle"); every
+  // other field and every answer are unchanged. Before the first triangle; a cache that shares
+  // a table (share()) computes rw whatever this says (the other caches of the table may read it).
+  void set_rw_unread(bool unread) { rw_unread_ = unread; }
+
   uint64_t hits() const { return hits_; }
   uint64_t misses() const { return misses_; }
   // True when this cache looks up its thread's KeptVertexTable (false: none yet, its own table,
@@ -441,7 +450,7 @@ class VertexCache {
     }
     ++misses_;
     copy_units<sizeof(uint32_t)>(slot + kKeyOffset, key_bytes(cv), kw_);
-    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_, recip_unit());
+    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_, recip_unit(), rw_unread_);
     write_head(slot, ok, out);  // seq stays 0 in a table of one cache
     return ok;
   }
@@ -553,6 +562,7 @@ class VertexCache {
   Pending ring_[kPrefetchRing];
   unsigned ring_next_ = 0;
   ClipVtx scratch_;  // accepted_vertex's working vertex
+  bool rw_unread_ = false;  // set_rw_unread (a table of this cache's own only: vertex())
   // The reciprocal unit of the draw, made at the first vertex computed (a cache is set up per
   // primitive by fxr::geometry(): the unit's seed table is not built for nothing).
   std::unique_ptr<RecipUnit> recip_;

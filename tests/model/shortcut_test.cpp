@@ -21,6 +21,7 @@
 
 #include "frontend/scene.hpp"
 #include "geom_ref.hpp"
+#include "model/stages/attr.hpp"
 #include "model/unit/chain.hpp"
 #include "stats_fields.hpp"
 
@@ -532,5 +533,82 @@ TEST(Shortcut, NoVaryingsMeansNoPlaneNoSumAndNoDivide) {
     EXPECT_EQ(t_novary.samples_with_nd, 0u);
     ASSERT_EQ(s_novary.v.size(), s_kept.v.size());
     for (size_t i = 0; i < s_kept.v.size(); ++i) ASSERT_TRUE(same_fragment(s_novary.v[i], s_kept.v[i], 0)) << i;
+  }
+}
+
+// VertexCache::set_rw_unread (docs/speed.md "Session 12: per triangle"): a cache whose caller
+// reads no rw answers the same triangles as one that computes it, each equal to the full
+// chain's in every field but rw, which is 0 with separate attribute positions (the exact 1/w_c,
+// never 0, not computed) and the full chain's without them (rw = r, kept); the same hits and
+// misses. Meshes with hard vertices, 0 and 2 varyings, both position paths, small tables.
+TEST(Shortcut, VertexCacheWithRwUnreadDiffersFromTheFullChainOnlyInRw) {
+  std::mt19937_64 rng(0x5c0c);
+  for (const bool attr : {true, false}) {
+    Config cfg;
+    if (!attr) cfg.raster.attr_subpixel_bits = cfg.raster.subpixel_bits;
+    uint64_t answered = 0;
+    for (int trial = 0; trial < 4; ++trial) {
+      DrawState st = state(200 + 40 * trial, 150, trial % 2 ? -7 : 0, 0, trial);
+      st.num_varyings = trial % 2 ? 2 : 0;
+      const std::vector<ClipTriangle> tris = grid_mesh(rng, 60, st.num_varyings, trial % 2 ? 1.05 : 0.7);
+      VertexCache unread(cfg, st, 8, 0), plain(cfg, st, 8, 0);
+      unread.set_rw_unread(true);
+      FullPathTap ft;
+      GeometryChain<FullPathTap> full(cfg, st, ft);
+      for (size_t p = 0; p < tris.size(); ++p) {
+        SetupTriangle a, b;
+        const bool ra = unread.triangle(tris[p], (uint32_t)p, a), rb = plain.triangle(tris[p], (uint32_t)p, b);
+        ASSERT_EQ(ra, rb) << "primitive " << p;
+        if (!ra) continue;
+        ++answered;
+        InputTriangle in;
+        in.prim = (uint32_t)p;
+        in.tri = tris[p];
+        std::vector<SetupTriangle> want;
+        RasterStats s;
+        ASSERT_EQ(full.run(in, want, s), GeomOutcome::Emitted) << "primitive " << p;
+        ASSERT_EQ(want.size(), 1u);
+        ASSERT_TRUE(same_setup(b, want[0])) << "primitive " << p;
+        for (int k = 0; k < 3; ++k) {
+          const FxFloat& rw = want[0].v[k].rw;
+          if (attr) {
+            ASSERT_TRUE(rw.sig != 0 && same_fx(a.v[k].rw, FxFloat{})) << "primitive " << p << " vertex " << k;
+            a.v[k].rw = rw;
+          }
+        }
+        ASSERT_TRUE(same_setup(a, want[0])) << "primitive " << p;
+      }
+      EXPECT_EQ(unread.hits(), plain.hits());
+      EXPECT_EQ(unread.misses(), plain.misses());
+      EXPECT_GT(unread.hits(), 1000u);
+      EXPECT_GT(unread.misses(), 1000u);
+    }
+    EXPECT_GT(answered, 5000u);
+  }
+}
+
+// The whole unit without a 1/w plane (no varyings with a sink; varyings without a sink): its
+// vertex cache leaves rw uncomputed (UnitChain), and every fragment, the depth buffer and every
+// counter are the full chain's.
+TEST(Shortcut, UnitChainWithoutA1OverWPlaneEqualsTheFullPath) {
+  SceneOptions o;
+  o.width = 256, o.height = 192;
+  const Scene sc = default_scene(o);
+  ASSERT_GT(sc.tris.size(), 10000u);
+  for (const bool with_sink : {true, false}) {
+    DrawState st = sc.state;
+    if (with_sink) st.num_varyings = 0;
+    ASSERT_TRUE(!with_sink || attr_separate(sc.config.raster));  // the path that drops rw
+    FrameOutput fast, full;
+    KeepSink fs, us;
+    NoTaps nt;
+    FullPathTap ft;
+    run_raster_unit_to(sc.config, st, sc.tris, fast, with_sink ? &fs : nullptr, nt);
+    run_raster_unit_to(sc.config, st, sc.tris, full, with_sink ? &us : nullptr, ft);
+    EXPECT_EQ(stats_fields(fast.stats), stats_fields(full.stats));
+    EXPECT_EQ(fast.depth, full.depth);
+    EXPECT_GT(fast.stats.fragments_depth_pass, 10000u);
+    ASSERT_EQ(fs.v.size(), us.v.size());
+    for (size_t i = 0; i < fs.v.size(); ++i) ASSERT_TRUE(same_fragment(fs.v[i], us.v[i], 0)) << "fragment " << i;
   }
 }
