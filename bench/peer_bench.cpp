@@ -199,16 +199,31 @@ struct ImageSink : FragmentSink {
     std::memcpy(pixel(f.x, f.y), rec + kFragmentHeaderBytes, (size_t)nv * kFragmentVaryingBytes);
   }
   void emit_span(const FragmentRecords& b) override {  // b.num_varyings == nv (the draw's)
-    if (nv == 0) return;
-    const size_t stride = b.stride(), bytes = (size_t)nv * kFragmentVaryingBytes;
-    const uint8_t* r = b.data;
+    switch (nv) {  // the record and pixel sizes as constants for the benchmark's counts
+      case 0: return;
+      case 1: return copy_span<1>(b);
+      case 2: return copy_span<2>(b);
+      default: return copy_span<-1>(b);
+    }
+  }
+  // Each record's varying words to its pixel. Everything the loop reads is a local: the image
+  // is written through a byte pointer, which may alias the members (GCC reloaded nv from `this`
+  // after every store, docs/speed.md "Session 12: the pixel loop").
+  template <int NV>
+  void copy_span(const FragmentRecords& b) {
+    const int n = NV > 0 ? NV : nv;
+    const size_t stride = fragment_record_bytes(n), bytes = (size_t)n * kFragmentVaryingBytes;
+    const uint8_t* r = b.data + kFragmentHeaderBytes;
+    const size_t count = b.count;
     const int y = b.y(0);
-    uint8_t* row = pixel(0, y);
-    for (size_t i = 0; i < b.count; ++i, r += stride) {
-      uint8_t* px = row + (size_t)fragment_word(r, 1) * bytes;
-      for (int k = 0; k < nv; ++k)  // word by word: fixed-size copies, no memcpy call
-        std::memcpy(px + (size_t)k * kFragmentVaryingBytes, r + kFragmentHeaderBytes + (size_t)k * kFragmentVaryingBytes,
-                    kFragmentVaryingBytes);
+    uint8_t* const row = pixel(0, y);
+    for (size_t i = 0; i < count; ++i, r += stride) {
+      uint8_t* const px = row + (size_t)fragment_word(r - kFragmentHeaderBytes, 1) * bytes;
+      if (NV > 0) std::memcpy(px, r, (size_t)NV * kFragmentVaryingBytes);  // one fixed-size copy
+      else
+        for (int k = 0; k < n; ++k)
+          std::memcpy(px + (size_t)k * kFragmentVaryingBytes, r + (size_t)k * kFragmentVaryingBytes,
+                      kFragmentVaryingBytes);
     }
     const size_t x = (size_t)b.x(0), row_bytes = (size_t)width * bytes;
     for (int k = 1; k <= 2; ++k)  // within the image (the address stays inside the buffer)

@@ -13,9 +13,10 @@
 //     sum keeps its sign and binade (its msb), found by testing the segment's last value and, where
 //     a sum leaves, by one division for the exact exit pixel; inside a segment each normalisation
 //     is NormalizeAtMsb (model/arith/fixed.hpp: one add and one shift, no leading-zero count);
-//     where every sum's significand lies above its low 64-bit word (shift > 64: the default
-//     planes), the segment normalises in 64-bit words (rne_high_word, fixed.hpp) with the
-//     exponents' segment constants folded, and D's reciprocal is computed one pixel ahead;
+//     in a segment of ≥ kAlignMinPixels pixels where D > 0 and no sum is zero, every sum is
+//     stepped left-aligned (its binade's msb at bit 126) and normalised in 64-bit words with
+//     constant shifts (rne_high_word, fixed.hpp), the exponents' segment constants folded and a
+//     rounding carry-out left to the divider;
 //   - one reciprocal of D's significand per pixel and per varying one multiply, the rounding
 //     decided by the estimate's fraction outside a narrow band, else by the exact remainder
 //     (div_sig_recip64_frac_w, model/arith/div.hpp): div_sig_fast64's result;
@@ -105,6 +106,7 @@ class FusedSpan {
     uint64_t exits_divided = 0;          // segment ends found by the exit division
     uint64_t sign_changes = 0;           // a sum re-armed with the other sign
     uint64_t segments_high = 0;          // segments normalised in 64-bit words (rne_high_word)
+    uint64_t segments_high_low = 0;      // of them with D's significand not above its low word
     // The span start's cursor (begin / run; docs/speed.md "Session 9: the span start"):
     uint64_t cursor_starts = 0;   // first spans of a triangle: the planes and the depth divided
     uint64_t cursor_moves = 0;    // later spans: every value moved from the last span start
@@ -437,6 +439,14 @@ class FusedSpan {
 
  private:
 
+  // The msb a sum is aligned to in the 64-bit-word segments: the high word's bit 62 (rne_high_word
+  // needs msb ≤ 2·64 − 2); sums up to 2^127 (msb ≤ kAlignMsb, NormalizeAtMsb's range).
+  static constexpr int kAlignMsb = 126;
+  // Shorter segments keep the u128 loop: the alignment's shifts and the magnitudes' write-back
+  // cost more than they save on the bunny's 2-pixel spans (docs/speed.md "Session 12: the pixel
+  // loop").
+  static constexpr int64_t kAlignMinPixels = 4;
+
   template <int NV, bool kOut, class Z, class W>
   uint64_t loop(const TriangleEquations& t, const Span& sp, const Z& z_start, const W& wd, uint8_t* out) {
     const int nv = kOut ? (NV >= 0 ? NV : nv_) : 0;
@@ -483,56 +493,65 @@ class FusedSpan {
         nzero[m] = lane_zero && num_[m].zero();
       }
       const int64_t end = i + len;
-      bool high = kOut && nv > 0 && high_words_ && den_pos && !lane_zero && den_.norm.high_word();
-      for (int m = 0; m < nv; ++m) high = high && num_[m].norm.high_word();
+      bool high = kOut && nv > 0 && high_words_ && den_pos && !lane_zero && len >= kAlignMinPixels &&
+                  den_.norm.m <= kAlignMsb;
+      for (int m = 0; m < nv; ++m) high = high && num_[m].norm.m <= kAlignMsb;
       if (high) {
-        // Every sum's significand above its low word (the default planes): the normalisations
-        // in 64-bit words (rne_high_word), each exponent word from its segment constant hw[m].
+        // Every sum left-aligned (docs/speed.md "Session 12: the pixel loop"): its value and step
+        // times 2^(kAlignMsb − m), m its binade's msb, mod 2^128 — exact at every pixel of the
+        // segment, where the value stays in the binade. The significand then lies in the high
+        // word at a shift that does not depend on the binade, s = 63 − bits (rne_high_word with
+        // constants: no shift or bias per sum and segment, any binade), and each exponent word
+        // comes from its segment constant hw[m].
         ++counts_.segments_high;
-        const int ds = dnorm.high_shift(), dm = dnorm.m + ed;
-        const uint64_t dhb = dnorm.high_bias();
-        int ns[kN];
-        uint64_t nhb[kN];
+        const int dm = dnorm.m + ed;
+        counts_.segments_high_low += dnorm.shift <= 64 ? 1 : 0;
+        const int ds = 63 - wd.db, ns = 63 - wd.nb;
+        const uint64_t dhb = (uint64_t{1} << (ds - 1)) - 1, nhb = (uint64_t{1} << (ns - 1)) - 1;
+        u128 da = dmag << (kAlignMsb - dnorm.m);
+        const u128 dsa = dstep << (kAlignMsb - dnorm.m);
+        u128 na[kN], nsa[kN];
         uint32_t hw[kN];
         for (int m = 0; m < nv; ++m) {
-          ns[m] = num_[m].norm.high_shift();
-          nhb[m] = num_[m].norm.high_bias();
+          const int sh = kAlignMsb - num_[m].norm.m;
+          na[m] = nmag[m] << sh;
+          nsa[m] = num_[m].step << sh;
           hw[m] = ((uint32_t)(num_[m].norm.m + nexp[m] - dm) << 1) | (num_[m].neg ? 1u : 0u);
         }
-        uint64_t dn = 0, Rn = 0;
-        int cdn = 0;
-        auto den_sig = [&](u128 v) {
-          dn = rne_high_word<uint64_t>((uint64_t)(v >> 64), (uint64_t)v, ds, dhb);
-          cdn = (int)(dn >> wd.db);  // the rounding's carry-out: 0 or 1
-          dn >>= cdn;
-          Rn = div_recip64_w(wd.w, wd.db, dn);
-        };
-        den_sig(dmag);
         for (; i < end; ++i) {
           const uint32_t code = z.code();
           const bool pass = depth_pass(codes, i - x0, code, mask, write);
           pass_count += pass ? 1 : 0;
-          // D's significand and reciprocal for this pixel were computed one pixel ahead (the
-          // division issues while the previous pixel's quotients are still being worked on).
-          const uint64_t d = dn, R = Rn;
-          const int cd = cdn;
-          dmag += dstep;
-          if (i + 1 < end) den_sig(dmag);
           if (pass) {
             put_fragment_header(rec, prim, (int32_t)i, y, code);
+            // The significands as rounded, a carry-out (2^bits) not renormalised: for
+            // a ∈ [2^(nb−1), 2^nb], d ∈ [2^(db−1), 2^db] div_sig_recip64_frac_w returns the correctly
+            // rounded quotient of those values, i.e. the renormalised operands' result with the
+            // exponent moved by the carries — its proof (model/arith/div.hpp) needs only
+            // num < 2^(W+qb) and R = ⌊(2^64 − 1)/b⌋, and a quotient of exactly 2^qb (a = 2^nb,
+            // d = 2^(db−1)) renormalises in round_increment (tests/model/div_test.cpp
+            // DivRecip64Frac.CarryOut*, div_slow_test.cpp).
+            const uint64_t d = rne_high_word<uint64_t>((uint64_t)(da >> 64), (uint64_t)da, ds, dhb);
+            const uint64_t R = div_recip64_w(wd.w, wd.db, d);
             for (int m = 0; m < nv; ++m) {
-              uint64_t a = rne_high_word<uint64_t>((uint64_t)(nmag[m] >> 64), (uint64_t)nmag[m], ns[m], nhb[m]);
-              const int cn = (int)(a >> wd.nb);
-              a >>= cn;
+              const uint64_t a = rne_high_word<uint64_t>((uint64_t)(na[m] >> 64), (uint64_t)na[m], ns, nhb);
               const DivSig q = div_sig_recip64_frac_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
               // put_fragment_var's words: the exponent word (exp << 1 | neg) from its segment
               // constant hw[m] = eb[m] << 1 | neg plus twice the pixel's part (mod 2^32).
-              put_fragment_var_words(rec, m, (uint32_t)q.sig, hw[m] + 2u * (uint32_t)(q.exp_adj + cn - cd));
+              put_fragment_var_words(rec, m, (uint32_t)q.sig, hw[m] + 2u * (uint32_t)q.exp_adj);
             }
             rec += stride;
           }
           z.step_x();
-          for (int m = 0; m < nv; ++m) nmag[m] += num_[m].step;
+          da += dsa;
+          for (int m = 0; m < nv; ++m) na[m] += nsa[m];
+        }
+        // The magnitudes at `end`, the next segment's first pixel (maybe outside the binade: not
+        // representable aligned), from the unaligned ones; past the span's end nothing reads them
+        // (the next span start sets every sum: Sum::start / move).
+        if (end <= x1) {
+          dmag += (u128)(uint64_t)len * dstep;
+          for (int m = 0; m < nv; ++m) nmag[m] += (u128)(uint64_t)len * num_[m].step;
         }
       }
       for (; i < end; ++i) {

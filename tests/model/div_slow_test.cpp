@@ -1,7 +1,8 @@
 // The divider's inline 64-bit fast path (div_sig_fast64, docs/speed.md "Divider") and one reciprocal
 // per pixel (div_sig_recip64, "The fused span") against
 // div_sig_exact on 10^8 random operand pairs plus constructed ties at the default widths and
-// 10^7 at the fast path's limit W + qb = 63 (label slow: about a minute of one core).
+// 10^7 at the fast path's limit W + qb = 63, and 10^8 operand pairs with a normaliser's carry-out
+// (label slow: about a minute of one core).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -81,4 +82,32 @@ TEST(DivRecip64FracSlow, BitIdenticalToExactAtTheWidthLimit) {
   for (const DivConfig& c : {shape(39, 39, 24), shape(32, 32, 31), shape(20, 39, 24)}) {
     EXPECT_EQ(count_mismatches(c, 10'000'000, 302, true, true), 0u) << c.num_bits << "/" << c.den_bits << "/" << c.quot_bits;
   }
+}
+
+// Operands with a normaliser's carry-out left in place (n = 2^nb or d = 2^db, the fused span's
+// word segments, docs/speed.md "Session 12: the pixel loop"): 10^8 random pairs at the default
+// widths (half of each kind) against div_sig_exact on the renormalised operands.
+TEST(DivRecip64FracSlow, CarryOutOperandsOnHundredMillionAtDefaultWidths) {
+  const DivConfig c;
+  const int w = div_align_bits(c);
+  const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
+  std::mt19937_64 rng(401);
+  uint64_t bad = 0;
+  for (uint64_t i = 0; i < 50'000'000; ++i) {
+    const uint64_t d = dlo + rng() % dlo, n = nlo + rng() % nlo;
+    // n = 2^nb: the renormalised 2^(nb−1), exponent + 1
+    DivSig want = div_sig_exact(c, nlo, d);
+    want.exp_adj += 1;
+    if (div_sig_recip64_frac_w(w, c.num_bits, c.den_bits, c.quot_bits, 2 * nlo, d, div_recip64(c, d)) != want &&
+        ++bad <= 5)
+      ADD_FAILURE() << "n=2^nb d=" << d;
+    // d = 2^db: the renormalised 2^(db−1), exponent − 1
+    want = div_sig_exact(c, n, dlo);
+    want.exp_adj -= 1;
+    if (div_sig_recip64_frac_w(w, c.num_bits, c.den_bits, c.quot_bits, n, 2 * dlo, div_recip64_w(w, c.den_bits, 2 * dlo)) !=
+            want &&
+        ++bad <= 5)
+      ADD_FAILURE() << "n=" << n << " d=2^db";
+  }
+  EXPECT_EQ(bad, 0u);
 }

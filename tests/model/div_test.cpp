@@ -563,3 +563,92 @@ TEST(DivRecip64Frac, BitIdenticalOnTenMillionPlusTiesAtDefaultAndEdgeWidths) {
 }
 
 TEST(DivRecip64Frac, DirectedHardCases) { expect_fast_path_on_hard_cases(recip64_frac); }
+
+// ---- operands with a normaliser's carry-out left in place (docs/speed.md "Session 12: the pixel
+// loop") ----------------------------------------------------------------------------------------
+// The fused span's 64-bit-word segments hand div_sig_recip64_frac_w the rounded significands as
+// they come: n = 2^nb (the value 2 at the significand's exponent) and d = 2^db. The result must be
+// the correctly rounded quotient of those values all the same: against the independent reference
+// ref_div (the rational n·2^−(nb−1) / d·2^−(db−1) ∈ [½, 2], written from the contract) and against
+// div_sig_exact on the renormalised operands (2^(nb−1) with exponent + 1, 2^(db−1) with − 1).
+
+namespace {
+
+DivSig renormalised_exact(const DivConfig& c, uint64_t n, uint64_t d) {
+  int e = 0;
+  if (n >> c.num_bits) n >>= 1, e += 1;
+  if (d >> c.den_bits) d >>= 1, e -= 1;
+  DivSig q = div_sig_exact(c, n, d);
+  q.exp_adj += e;
+  return q;
+}
+
+// One carry-out pair (n = 2^nb or d = 2^db, or both) against both references; counts which way
+// the path went (the band: the remainder decided) and the exact ties of the reference.
+struct CarryOutCheck {
+  uint64_t pairs = 0, mismatches = 0, decided = 0, remainder = 0;
+  void operator()(const DivConfig& c, uint64_t n, uint64_t d) {
+    ++pairs;
+    const DivSig got = recip64_frac(c, n, d);
+    const DivSig want = ref_div(c.num_bits, c.den_bits, c.quot_bits, n, d);
+    if ((got != want || got != renormalised_exact(c, n, d)) && ++mismatches <= 5)
+      ADD_FAILURE() << div_label(c) << " n=" << n << " d=" << d << " got " << show(got) << " want " << show(want);
+    (frac_decided(c, n, d) ? decided : remainder) += 1;
+  }
+};
+
+}  // namespace
+
+// Every carry-out pair of the six 12-bit shapes of BitIdenticalToExactForAll12BitOperands: n = 2^nb
+// with every d ∈ [2^(db−1), 2^db], d = 2^db with every n ∈ [2^(nb−1), 2^nb].
+TEST(DivRecip64Frac, CarryOutOperandsForEvery12BitPair) {
+  CarryOutCheck k;
+  for (const DivConfig& c :
+       {shape(DivAlgorithm::Radix2, 12, 12, 12), shape(DivAlgorithm::Radix2, 12, 9, 14),
+        shape(DivAlgorithm::Radix2, 9, 12, 10), shape(DivAlgorithm::Radix2, 11, 11, 4),
+        shape(DivAlgorithm::Radix2, 12, 12, 48), shape(DivAlgorithm::Radix2, 12, 12, 51)}) {
+    const uint64_t ntop = 1ull << c.num_bits, dtop = 1ull << c.den_bits;
+    for (uint64_t d = dtop / 2; d <= dtop; ++d) k(c, ntop, d);
+    for (uint64_t n = ntop / 2; n < ntop; ++n) k(c, n, dtop);
+  }
+  EXPECT_EQ(k.mismatches, 0u);
+  EXPECT_EQ(k.pairs, 18950u);  // Σ (2^(db−1) + 1) + 2^(nb−1) over the shapes
+  EXPECT_GT(k.decided, 1000u);
+  EXPECT_GT(k.remainder, 1000u);
+}
+
+// 10^6 random carry-out pairs at the defaults, the limit shapes and 32/32/28, plus for d = 2^db
+// the constructed ties (the quotient's dropped bits exactly ½: n ≡ 2^(t−1) mod 2^t, t = nb − qb)
+// and their neighbours, and the directed extremes.
+TEST(DivRecip64Frac, CarryOutOperandsOnAMillionPlusTiesAtDefaultAndEdgeWidths) {
+  std::vector<DivConfig> cs = {DivConfig{}};
+  for (const DivConfig& c : fast64_edge_shapes()) cs.push_back(c);
+  cs.push_back(shape(DivAlgorithm::Radix2, 32, 32, 28));
+  std::mt19937_64 rng(24);
+  for (const DivConfig& c : cs) {
+    CarryOutCheck k;
+    const uint64_t nlo = 1ull << (c.num_bits - 1), dlo = 1ull << (c.den_bits - 1);
+    for (int i = 0; i < 500000; ++i) {
+      k(c, 2 * nlo, dlo + rng() % dlo);
+      k(c, nlo + rng() % nlo, 2 * dlo);
+    }
+    const int t = c.num_bits - c.quot_bits;
+    uint64_t ties = 0;
+    if (t >= 1) {
+      for (int i = 0; i < 100000; ++i) {
+        const uint64_t n = ((nlo + rng() % nlo) & ~((1ull << t) - 1)) | (1ull << (t - 1));
+        for (uint64_t v : {n - 1, n, n + 1}) k(c, v, 2 * dlo);
+        const DivSig q = ref_div(c.num_bits, c.den_bits, c.quot_bits, n, 2 * dlo);  // a tie: even
+        ties += (q.sig & 1) == 0 ? 1 : 0;
+      }
+      EXPECT_EQ(ties, 100000u) << div_label(c) << ": the constructed ties round to even";
+    }
+    for (uint64_t v : {nlo, nlo + 1, 2 * nlo - 1, 2 * nlo}) k(c, v, 2 * dlo);
+    for (uint64_t v : {dlo, dlo + 1, 2 * dlo - 1, 2 * dlo}) k(c, 2 * nlo, v);
+    EXPECT_EQ(k.mismatches, 0u) << div_label(c);
+    EXPECT_GT(k.remainder, 0u) << div_label(c);
+    if (div_align_bits(c) + c.quot_bits < 63) {
+      EXPECT_GT(k.decided, 0u) << div_label(c);
+    }
+  }
+}

@@ -226,6 +226,7 @@ Config widths_config(int nb, int db, int qb) {
 void add(FusedSpan::Counts& a, const FusedSpan::Counts& b) {
   a.spans += b.spans, a.spans_z128 += b.spans_z128, a.spans_zconst += b.spans_zconst, a.segments += b.segments;
   a.exits_divided += b.exits_divided, a.sign_changes += b.sign_changes, a.segments_high += b.segments_high;
+  a.segments_high_low += b.segments_high_low;
   a.cursor_starts += b.cursor_starts, a.cursor_moves += b.cursor_moves, a.spans_z64 += b.spans_z64;
   a.z_moves_divided += b.z_moves_divided, a.z_cursor_lost += b.z_cursor_lost, a.rearmed_moves += b.rearmed_moves;
   a.sums_fixed += b.sums_fixed, a.rearmed_sign_moves += b.rearmed_sign_moves;
@@ -289,6 +290,9 @@ TEST(FusedSpan, RandomTrianglesUnderEveryDepthStateEqualTheStagedPath) {
   EXPECT_GT(total.sign_changes, 0u);       // and crossed zero
   EXPECT_GT(total.segments_high, 100u);    // both loops
   EXPECT_GT(total.segments - total.segments_high, 100u);
+  // The word segments also where D's significand reaches into the low word (the sums aligned,
+  // docs/speed.md "Session 12: the pixel loop").
+  EXPECT_GT(total.segments_high_low, 10u);
 }
 
 TEST(FusedSpan, GrazingPlanesAcrossBinadesAndZeroEqualTheStagedPath) {
