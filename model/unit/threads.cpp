@@ -120,6 +120,10 @@ constexpr uint64_t kWeightCap = uint64_t{1} << 62;
 constexpr uint64_t kNoStart = ~uint64_t{0};
 uint64_t add_weight(uint64_t a, uint64_t b) { return std::min(a + b, kWeightCap); }  // a, b ≤ kWeightCap
 
+// The step that fills a new depth buffer covers this many steps' worth of items when they make a
+// split step written in place (FrameRun::decide; docs/speed.md "Session 12: threads").
+constexpr uint64_t kThreadFillStepFactor = 4;
+
 // Rows sampled for a split step's estimated coverage (plan_split: the parts' boundaries fall on
 // a sample; the grazing plane's steps are 64–130 rows, sampled every row or two).
 constexpr int64_t kSplitSamples = 64;
@@ -762,9 +766,22 @@ class FrameRun {
     if (ctl_.clear_new) {  // the step that fills a new depth buffer: pieces claimed in row order
       const int64_t ra = ctl_.split_rows[0], rb = ctl_.split_rows[(size_t)T_] - 1;
       for (;;) {
-        const int64_t lo = ra + (int64_t)next_piece_.fetch_add(1, std::memory_order_relaxed) * P_;
+        const size_t k = (size_t)next_piece_.fetch_add(1, std::memory_order_relaxed);
+        const int64_t lo = ra + (int64_t)k * P_;
         if (lo > rb) return;
-        split_rows(w, chain, eq, lo, std::min(rb, lo + P_ - 1));
+        const int64_t hi = std::min(rb, lo + P_ - 1);
+        if (!ctl_.in_place) {
+          split_rows(w, chain, eq, lo, hi);
+          continue;
+        }
+        // In place: from the step's first record + the fragments the earlier pieces generate
+        // (plan_split counted them), at most as many as this piece generates.
+        wait_rows(hi - st_.viewport_y);
+        phase(w, ThreadPhase::Direct);
+        window.reset(keep_->records_for_overwrite(window_base_ + piece_at_[k]), piece_at_[k + 1] - piece_at_[k], nv_);
+        direct.rows(eq, (int)lo, (int)hi);
+        piece_kept_[k] = window.count();
+        phase(w, ThreadPhase::Raster);
       }
     }
     const int64_t lo = ctl_.split_rows[(size_t)w], hi = ctl_.split_rows[(size_t)w + 1] - 1;
@@ -894,6 +911,7 @@ class FrameRun {
   // Between two steps, on the last thread `w` to arrive: what the next step does.
   void decide(int w) {
     ctl_.fill_depth = false;
+    const bool was_fill = ctl_.clear_new;  // the step just done filled a new depth buffer
     ctl_.clear_new = defer_clear_;  // the step after step 0 fills a deferred new depth buffer
     defer_clear_ = false;
     ctl_.out_parity = -1;
@@ -903,7 +921,7 @@ class FrameRun {
       for (const Worker& w : W_) total += w.step[ctl_.rec_parity].store.size(), next = std::min(next, w.next_start);
       if (records_) {  // after the records written straight into the frame (a split step)
         ctl_.out_parity = ctl_.rec_parity;
-        out_base_ = close_parts(w);
+        out_base_ = close_parts(w, was_fill);
         out_size_ = out_base_ + total;
         if (keep_) keep_->resize_for_overwrite(out_size_);
       }
@@ -958,7 +976,20 @@ class FrameRun {
       claims_.store(0, std::memory_order_relaxed);
     }
     if (ctl_.raster >= 0) ctl_.rec_parity ^= 1;
-    plan_split();
+    // The step that fills a new depth buffer: when kThreadFillStepFactor steps' worth of items are
+    // still one triangle's and go in place (the grazing plane), they make one split step, whose
+    // pieces the threads claim — the others rasterise while thread 0 fills, and it claims the
+    // rest after (a step of step_pixels held less raster than the fill: docs/speed.md "Session
+    // 12: threads").
+    bool planned = false;
+    if (ctl_.clear_new && ctl_.raster >= 0 && ctl_.raster_end < kWeightCap) {
+      const uint64_t end = ctl_.raster_end;
+      ctl_.raster_end = add_weight(raster_from_, step_ * kThreadFillStepFactor);
+      plan_split();
+      planned = ctl_.split && ctl_.in_place;
+      if (!planned) ctl_.raster_end = end;
+    }
+    if (!planned) plan_split();
     ctl_.done = ctl_.raster < 0 && ctl_.setup < 0 && ctl_.out_parity < 0;
   }
 
@@ -966,9 +997,23 @@ class FrameRun {
   // that kept fewer records than it generated — depth-test failures — left a gap before the next:
   // the later parts move down, in order, and the frame's next split steps copy their parts ≥ 1
   // from the step stores instead); returns the end of the frame's records so far.
-  size_t close_parts(int w) {
+  size_t close_parts(int w, bool pieces) {
     size_t at = out_size_ + W_[0].direct;
     if (!ctl_.split || !ctl_.in_place) return at;
+    if (pieces) {  // the claimed pieces of a fill step, in row order
+      for (size_t k = 0; k + 1 < piece_at_.size(); ++k) {
+        const size_t placed = window_base_ + piece_at_[k];
+        if (placed > at && piece_kept_[k] > 0) {
+          phase(w, ThreadPhase::Compact);
+          std::memmove(keep_->records_for_overwrite(at), keep_->records_for_overwrite(placed),
+                       piece_kept_[k] * keep_->record_bytes());
+          phase(w, ThreadPhase::Serial);
+          in_place_ok_ = false;
+        }
+        at += piece_kept_[k];
+      }
+      return at;
+    }
     for (int t = 1; t < T_; ++t) {
       const Worker& p = W_[(size_t)t];
       if (p.direct == 0) continue;
@@ -1038,7 +1083,16 @@ class FrameRun {
     const size_t room = out_size_ + (size_t)(ctl_.split_rows[1] - ra) * (size_t)width;
     if (room > keep_->capacity()) return;
     const size_t room_all = out_size_ + (size_t)(rb + 1 - ra) * (size_t)width;
-    ctl_.in_place = !ctl_.clear_new && in_place_ok_ && room_all <= keep_->capacity();
+    ctl_.in_place = in_place_ok_ && room_all <= keep_->capacity();
+    if (ctl_.in_place && ctl_.clear_new) {  // the claimed pieces' places: the fragments generated before each
+      const size_t n = (size_t)((rb - ra) / P_ + 1);
+      piece_at_.assign(n + 1, 0);
+      piece_kept_.assign(n, 0);
+      TriSetup e = t;
+      e.y0 = (int)ra, e.y1 = (int)rb;
+      traverse(e, [&](int j, int xb, int xe) { piece_at_[(size_t)((j - ra) / P_) + 1] += (size_t)(xe - xb + 1); });
+      for (size_t k = 0; k < n; ++k) piece_at_[k + 1] += piece_at_[k];
+    }
     ctl_.split = true;
     ctl_.split_chunk = c;
     ctl_.split_tri = i;
@@ -1096,6 +1150,9 @@ class FrameRun {
   uint64_t raster_from_ = 0;  // the weight where the step being planned starts
   size_t window_base_ = 0;    // a split step: thread 0's first record in the frame's store
   std::vector<uint64_t> split_weight_;  // plan_split's cumulative weights (kept: no allocation per step)
+  // A fill step's claimed pieces written in place: piece k from window_base_ + piece_at_[k] (the
+  // fragments the pieces before it generate), keeping piece_kept_[k] records (its claimer's).
+  std::vector<size_t> piece_at_, piece_kept_;
   size_t out_base_ = 0, out_size_ = 0;  // first record of the step being output; records so far
   int64_t set_up_ = 0, rastered_ = 0;   // batches set up, batches rasterised
   bool batch_empty_[2] = {true, true};

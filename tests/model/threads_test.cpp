@@ -588,6 +588,9 @@ TEST(Threads, SplitStepsWriteThreadZerosRowsStraightIntoTheFrame) {
         FrameOutput f;
         for (int frame = 0; frame < 2; ++frame) {  // a new frame, then the same one reused
           n.clear = 0;
+          // The split steps counted on the reused frame (a new frame's fill step may be one of
+          // kThreadFillStepFactor steps: EachFillStepsPiecesGoInPlace).
+          if (frame == 1) n.on_0 = 0, n.in_place = 0;
           run_raster_unit_threads(c.cfg, c.st, c.tris, f, &f.fragments, nullptr, o);
           expect_same_frame(want, f, 2, what + (frame ? " reused" : " new"));
           EXPECT_EQ(n.clear.load(), frame ? 0 : 1) << what << ": a new depth buffer filled within a step";
@@ -620,6 +623,54 @@ TEST(Threads, SplitStepsWriteThreadZerosRowsStraightIntoTheFrame) {
   ThreadOptions o;
   o.threads = 2;
   expect_same_frame(run_raster_unit(c.cfg, c.st, {}), run_raster_unit(c.cfg, c.st, {}, o), 2, "no triangle");
+}
+
+// A new frame's fill step (thread 0 fills the depth buffer while the rows are claimed in pieces)
+// made of kThreadFillStepFactor steps when that makes a split step, each claimed piece written
+// straight into the frame's store after the fragments the pieces before it generate. At 3
+// threads and steps of 150 pixels only the fill step is a split step (a normal step holds one
+// row of the quad, the fill step four). New frames one after the other through one pool (the
+// store then has room, as in threads_bench), each equal to the sequential unit's.
+TEST(Threads, FillStepsPiecesGoInPlace) {
+  // The fill step is the frame's first raster step: a fragment fails its depth test there only
+  // where it is at the cleared code itself. The quad fails none (Less); with Never every piece
+  // keeps none of what it generates; with Equal on the far plane a few fragments pass.
+  Case quad = quad_case(), never = quad_case(), far = quad_case();
+  never.name = "never", far.name = "far";
+  never.st.depth_func = DepthFunc::Never;
+  for (ClipTriangle& t : far.tris)
+    for (ClipVertex& v : t.v) v.pos[1] = -v.pos[1], v.pos[2] = v.pos[3] * (v.pos[0] < 0 ? 1.0f : 0.9999f);
+  far.st.depth_func = DepthFunc::Equal;
+  for (const Case* c : {&quad, &never, &far}) {
+    const FrameOutput want = run_raster_unit(c->cfg, c->st, c->tris);
+    ASSERT_EQ(want.stats.fragments_depth_fail > 0, c != &quad) << c->name;
+    int direct = 0, compact = 0;
+    for (int rows : {1, 8}) {
+      DirectCounter n;
+      ThreadOptions o;
+      o.threads = 3, o.band_rows = rows, o.step_pixels = 150, o.observer = &n;
+      for (int frame = 0; frame < 3; ++frame) {
+        FrameOutput f;  // new each time
+        run_raster_unit_threads(c->cfg, c->st, c->tris, f, &f.fragments, nullptr, o);
+        expect_same_frame(want, f, 2, c->name + " rows " + std::to_string(rows) + " frame " + std::to_string(frame));
+      }
+      EXPECT_EQ(n.elsewhere.load(), 0);
+      direct += n.on_0.load() + n.in_place.load(), compact += n.compact.load();
+    }
+    EXPECT_GT(direct, 0) << c->name << ": no piece written in place";
+    if (c == &quad) {
+      EXPECT_EQ(compact, 0) << "a gap where no fragment failed";
+    }
+  }
+  // Without the fill step's in-place pieces, the same options make no split step at all.
+  DirectCounter n;
+  ThreadOptions o;
+  o.threads = 3, o.step_pixels = 150, o.observer = &n;
+  FrameOutput f;
+  for (int frame = 0; frame < 2; ++frame) run_raster_unit_threads(quad.cfg, quad.st, quad.tris, f, &f.fragments, nullptr, o);
+  n.on_0 = 0, n.in_place = 0;
+  run_raster_unit_threads(quad.cfg, quad.st, quad.tris, f, &f.fragments, nullptr, o);  // reused: no fill step
+  EXPECT_EQ(n.on_0.load() + n.in_place.load(), 0);
 }
 
 TEST(Threads, SplitStepsWriteEveryPartInPlaceAndCloseTheGapsOfDepthFailures) {
