@@ -15,8 +15,8 @@
 //     is NormalizeAtMsb (model/arith/fixed.hpp: one add and one shift, no leading-zero count);
 //     in a segment of ≥ kAlignMinPixels pixels where D > 0 and no sum is zero, every sum is
 //     stepped left-aligned (its binade's msb at bit 126) and normalised in 64-bit words with
-//     constant shifts (rne_high_word, fixed.hpp), the exponents' segment constants folded and a
-//     rounding carry-out left to the divider;
+//     constant shifts (rne_high_word, fixed.hpp), the exponents' segment constants folded, a
+//     rounding carry-out left to the divider and D's reciprocal computed one pixel ahead;
 //   - one reciprocal of D's significand per pixel and per varying one multiply, the rounding
 //     decided by the estimate's fraction outside a narrow band, else by the exact remainder
 //     (div_sig_recip64_frac_w, model/arith/div.hpp): div_sig_fast64's result;
@@ -518,10 +518,21 @@ class FusedSpan {
           nsa[m] = num_[m].step << sh;
           hw[m] = ((uint32_t)(num_[m].norm.m + nexp[m] - dm) << 1) | (num_[m].neg ? 1u : 0u);
         }
+        // D's significand and reciprocal one pixel ahead: the division issues while the
+        // previous pixel's quotients are worked on (the next value exists only inside the
+        // segment: outside its binade the aligned value is meaningless, and may round to 0).
+        uint64_t dn = rne_high_word<uint64_t>((uint64_t)(da >> 64), (uint64_t)da, ds, dhb);
+        uint64_t Rn = div_recip64_w(wd.w, wd.db, dn);
         for (; i < end; ++i) {
           const uint32_t code = z.code();
           const bool pass = depth_pass(codes, i - x0, code, mask, write);
           pass_count += pass ? 1 : 0;
+          const uint64_t d = dn, R = Rn;
+          da += dsa;
+          if (i + 1 < end) {
+            dn = rne_high_word<uint64_t>((uint64_t)(da >> 64), (uint64_t)da, ds, dhb);
+            Rn = div_recip64_w(wd.w, wd.db, dn);
+          }
           if (pass) {
             put_fragment_header(rec, prim, (int32_t)i, y, code);
             // The significands as rounded, a carry-out (2^bits) not renormalised: for
@@ -531,8 +542,6 @@ class FusedSpan {
             // num < 2^(W+qb) and R = ⌊(2^64 − 1)/b⌋, and a quotient of exactly 2^qb (a = 2^nb,
             // d = 2^(db−1)) renormalises in round_increment (tests/model/div_test.cpp
             // DivRecip64Frac.CarryOut*, div_slow_test.cpp).
-            const uint64_t d = rne_high_word<uint64_t>((uint64_t)(da >> 64), (uint64_t)da, ds, dhb);
-            const uint64_t R = div_recip64_w(wd.w, wd.db, d);
             for (int m = 0; m < nv; ++m) {
               const uint64_t a = rne_high_word<uint64_t>((uint64_t)(na[m] >> 64), (uint64_t)na[m], ns, nhb);
               const DivSig q = div_sig_recip64_frac_w(wd.w, wd.nb, wd.db, wd.qb, a, d, R);
@@ -543,7 +552,6 @@ class FusedSpan {
             rec += stride;
           }
           z.step_x();
-          da += dsa;
           for (int m = 0; m < nv; ++m) na[m] += nsa[m];
         }
         // The magnitudes at `end`, the next segment's first pixel (maybe outside the binade: not
