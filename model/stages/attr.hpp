@@ -140,16 +140,19 @@ void attr_plane_to(const AttrEdgeTerms& t, const int64_t q[3], Plane& out);
 
 // Contract: the depth plane's vertex value of a vertex with depth z (z_frac_bits):
 // RNE(z·(2^db − 1) / 2^db), i.e. z·(2^db − 1) with z_frac_bits − db fraction bits of an LSB.
-// In int64 words when the product fits and the shift is within shift_round_right's int64 range
-// (the i128 path's template: the same steps; three per triangle, docs/speed.md "Session 12: per
-// triangle"), else in i128.
+// In int64 words when the product and the rounding sum fit (three per triangle, docs/speed.md
+// "Session 12: per triangle"), else in i128. The int64 rounding has no branch: with
+// p = q·2^db + r (0 ≤ r < 2^db, p ≥ 0), (p + 2^(db−1) − 1 + (q & 1)) >> db is q + 1 exactly when
+// r > 2^(db−1), or r = 2^(db−1) and q is odd — round half to even (shift_round_right's branches
+// on the remainder mispredicted on the bunny's depths).
 inline int64_t attr_depth_q(const RasterConfig& rc, uint64_t z) {
   const int db = rc.depth_bits();
   const int64_t M = (int64_t)((1u << db) - 1);
   int64_t p;
-  if (db >= 1 && db <= kInt64ShiftMax && z <= (uint64_t)INT64_MAX && !__builtin_mul_overflow((int64_t)z, M, &p))
-    return detail::shift_round_right<int64_t, uint64_t>(p, db, Round::HalfEven);
-  return (int64_t)shift_round((i128)z * M, db, Round::HalfEven);  // product < 2^63
+  if (db >= 1 && db <= kInt64ShiftMax && z <= (uint64_t)INT64_MAX && !__builtin_mul_overflow((int64_t)z, M, &p) &&
+      p <= INT64_MAX - ((int64_t)1 << db))
+    return (p + ((int64_t)1 << (db - 1)) - 1 + ((p >> db) & 1)) >> db;
+  return (int64_t)shift_round((i128)z * M, db, Round::HalfEven);  // product < 2^64 · 2^db
 }
 
 // Contract: depth_setup (depth.hpp) on the attribute triangle: Z = Σ E'_k·z_k·(2^db − 1),

@@ -130,6 +130,15 @@ inline void check_align(Tally& t, const FxFloat v[3], int bits) {
 
 // A value of a random width 0 … max_bits (leading one at the top of that width), so that every
 // magnitude, and both sides of each range test, is reached.
+// attr_depth_q's reference: RNE(z·M / 2^db), M = 2^db − 1, from the exact i128 product by
+// floor, remainder and a compare with the half (not shift_round: docs/speed.md "Session 12: per
+// triangle"). z < 2^64.
+inline int64_t depth_q_reference(int db, uint64_t z) {
+  const i128 p = (i128)z * (((i128)1 << db) - 1);
+  const i128 q = p >> db, r = p - (q << db), half = (i128)1 << (db - 1);
+  return (int64_t)((r > half || (r == half && (q & 1))) ? q + 1 : q);
+}
+
 inline uint64_t random_width(std::mt19937_64& g, int max_bits) {
   const int b = (int)(g() % (uint64_t)(max_bits + 1));
   if (b == 0) return 0;

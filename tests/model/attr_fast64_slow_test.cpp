@@ -22,5 +22,22 @@ TEST(AttrFast64Slow, HundredMillionRandomCasesOfEachPathEqualTheReference) {
                                    align.mismatches));
 }
 
+// attr_depth_q (its branchless int64 rounding, docs/speed.md "Session 12: per triangle"):
+// 10^8 random z ≤ 2^40 of random magnitude per depth format against depth_q_reference.
+TEST(AttrFast64Slow, AttrDepthQHundredMillionRandomCasesPerFormatEqualTheReference) {
+  std::mt19937_64 g(0xD3B7510);
+  uint64_t mismatches = 0;
+  for (const DepthFormat f : {DepthFormat::D16, DepthFormat::D24}) {
+    RasterConfig rc;
+    rc.depth_format = f;
+    const int db = rc.depth_bits();
+    for (long i = 0; i < 100000000; ++i) {
+      const uint64_t z = g() >> 24 >> (g() % 41);
+      if (attr_depth_q(rc, z) != depth_q_reference(db, z)) ++mismatches;
+    }
+  }
+  EXPECT_EQ(mismatches, 0u);
+}
+
 }  // namespace
 }  // namespace fxr::fast64

@@ -207,18 +207,12 @@ TEST(AttrFast64, AlignBlockRangeTestFlipsAtShift62AndAt63BitSignificands) {
   expect_clean(t, "ties");
 }
 
-// attr_depth_q's int64 path (docs/speed.md "Session 12: per triangle") against RNE(z·M / 2^db),
-// M = 2^db − 1, formed here from the exact i128 product by floor, remainder and a compare with
-// the half: both depth formats, every z below 2^18, the ties (z ≡ 2^(db−1) mod 2^db: z·M ≡ −z)
+// attr_depth_q's int64 path (docs/speed.md "Session 12: per triangle": a branchless rounding)
+// against depth_q_reference (RNE(z·M / 2^db) from the exact product): both depth formats, every z below 2^18, the ties (z ≡ 2^(db−1) mod 2^db: z·M ≡ −z)
 // of both parities, z at 2^z_frac_bits for z_frac_bits 16 … 40, both sides of the int64
 // product bound (z·M at INT64_MAX, where the i128 path takes over: z_frac_bits 40 at D24
 // reaches 2^64), and 10^6 random z ≤ 2^40.
 TEST(AttrFast64, AttrDepthQEqualsTheExactRoundingOnBothSidesOfTheProductBound) {
-  const auto want = [](int db, uint64_t z) {
-    const i128 p = (i128)z * (((i128)1 << db) - 1);
-    const i128 q = p >> db, r = p - (q << db), half = (i128)1 << (db - 1);
-    return (int64_t)((r > half || (r == half && (q & 1))) ? q + 1 : q);
-  };
   std::mt19937_64 g(0xD3B7);
   uint64_t cases = 0, above_bound = 0;
   for (const DepthFormat f : {DepthFormat::D16, DepthFormat::D24}) {
@@ -229,7 +223,7 @@ TEST(AttrFast64, AttrDepthQEqualsTheExactRoundingOnBothSidesOfTheProductBound) {
     const auto check = [&](uint64_t z) {
       ++cases;
       if (z > (uint64_t)INT64_MAX / M) ++above_bound;
-      ASSERT_EQ(attr_depth_q(rc, z), want(db, z)) << "db " << db << " z " << z;
+      ASSERT_EQ(attr_depth_q(rc, z), depth_q_reference(db, z)) << "db " << db << " z " << z;
     };
     for (uint64_t z = 0; z < ((uint64_t)1 << 18); ++z) check(z);
     for (uint64_t j = 0; j < 64; ++j) check(((uint64_t)1 << (db - 1)) + j * ((uint64_t)1 << db));  // ties
