@@ -57,6 +57,27 @@ struct FullPathTap {
   void out(const typename S::Out&) {}
 };
 
+// The full geometry chain's answer for one primitive, the reference a vertex-cache shortcut is
+// compared with: the triangle must be emitted as exactly one set-up triangle.
+::testing::AssertionResult full_chain_setup(GeometryChain<FullPathTap>& full, const InputTriangle& in,
+                                            SetupTriangle& out, RasterStats& s) {
+  std::vector<SetupTriangle> want;
+  if (full.run(in, want, s) != GeomOutcome::Emitted)
+    return ::testing::AssertionFailure() << "primitive " << in.prim << " not emitted by the full chain";
+  if (want.size() != 1u)
+    return ::testing::AssertionFailure() << "primitive " << in.prim << ": " << want.size() << " triangles";
+  out = want[0];
+  return ::testing::AssertionSuccess();
+}
+::testing::AssertionResult full_chain_setup(GeometryChain<FullPathTap>& full, const ClipTriangle& tri,
+                                            uint32_t prim, SetupTriangle& out) {
+  InputTriangle in;
+  in.prim = prim;
+  in.tri = tri;
+  RasterStats s;
+  return full_chain_setup(full, in, out, s);
+}
+
 // Every sample leaving the depth stage and the fragment divided from it.
 struct PairTap {
   std::vector<PlaneSample> samples;
@@ -358,12 +379,11 @@ TEST(Shortcut, VertexCacheWithCollidingSlotsAnswersOnlyForTheVertexItKeeps) {
       continue;
     }
     ++answered;
-    std::vector<SetupTriangle> want;
+    SetupTriangle want;
     RasterStats s;
-    ASSERT_EQ(full.run(in, want, s), GeomOutcome::Emitted) << "primitive " << p;
+    ASSERT_TRUE(full_chain_setup(full, in, want, s));
     ASSERT_EQ(s.prims_trivial_accept, 1u);
-    ASSERT_EQ(want.size(), 1u);
-    ASSERT_TRUE(same_setup(got, want[0])) << "primitive " << p;
+    ASSERT_TRUE(same_setup(got, want)) << "primitive " << p;
   }
   EXPECT_GT(answered, 1000u);
   EXPECT_GT(declined, 1000u);
@@ -404,14 +424,9 @@ TEST(Shortcut, VertexCachePrefetchedSlotsAreOnlyHints) {
       SetupTriangle c;
       if (!stale.triangle(obj, (uint32_t)p, c)) continue;
       ++stale_answered;
-      InputTriangle in;
-      in.prim = (uint32_t)p;
-      in.tri = tris[p];
-      std::vector<SetupTriangle> want;
-      RasterStats s;
-      ASSERT_EQ(full.run(in, want, s), GeomOutcome::Emitted) << "primitive " << p;
-      ASSERT_EQ(want.size(), 1u);
-      ASSERT_TRUE(same_setup(c, want[0])) << "primitive " << p;
+      SetupTriangle want;
+      ASSERT_TRUE(full_chain_setup(full, tris[p], (uint32_t)p, want));
+      ASSERT_TRUE(same_setup(c, want)) << "primitive " << p;
     }
     EXPECT_EQ(plain.hits(), ahead.hits());
     EXPECT_EQ(plain.misses(), ahead.misses());
@@ -447,14 +462,9 @@ TEST(Shortcut, VertexCacheKeptTableAnswersAsAFreshTable) {
       if (!rx) continue;
       ++answered;
       ASSERT_TRUE(same_setup(x, y)) << "primitive " << p;
-      InputTriangle in;
-      in.prim = (uint32_t)p;
-      in.tri = tris[p];
-      std::vector<SetupTriangle> want;
-      RasterStats s;
-      ASSERT_EQ(full.run(in, want, s), GeomOutcome::Emitted) << "primitive " << p;
-      ASSERT_EQ(want.size(), 1u);
-      ASSERT_TRUE(same_setup(x, want[0])) << "primitive " << p;
+      SetupTriangle want;
+      ASSERT_TRUE(full_chain_setup(full, tris[p], (uint32_t)p, want));
+      ASSERT_TRUE(same_setup(x, want)) << "primitive " << p;
     }
     ASSERT_TRUE(kept.uses_kept_table());
     ASSERT_FALSE(own.uses_kept_table());
@@ -561,22 +571,17 @@ TEST(Shortcut, VertexCacheWithRwUnreadDiffersFromTheFullChainOnlyInRw) {
         ASSERT_EQ(ra, rb) << "primitive " << p;
         if (!ra) continue;
         ++answered;
-        InputTriangle in;
-        in.prim = (uint32_t)p;
-        in.tri = tris[p];
-        std::vector<SetupTriangle> want;
-        RasterStats s;
-        ASSERT_EQ(full.run(in, want, s), GeomOutcome::Emitted) << "primitive " << p;
-        ASSERT_EQ(want.size(), 1u);
-        ASSERT_TRUE(same_setup(b, want[0])) << "primitive " << p;
+        SetupTriangle want;
+        ASSERT_TRUE(full_chain_setup(full, tris[p], (uint32_t)p, want));
+        ASSERT_TRUE(same_setup(b, want)) << "primitive " << p;
         for (int k = 0; k < 3; ++k) {
-          const FxFloat& rw = want[0].v[k].rw;
+          const FxFloat& rw = want.v[k].rw;
           if (attr) {
             ASSERT_TRUE(rw.sig != 0 && same_fx(a.v[k].rw, FxFloat{})) << "primitive " << p << " vertex " << k;
             a.v[k].rw = rw;
           }
         }
-        ASSERT_TRUE(same_setup(a, want[0])) << "primitive " << p;
+        ASSERT_TRUE(same_setup(a, want)) << "primitive " << p;
       }
       EXPECT_EQ(unread.hits(), plain.hits());
       EXPECT_EQ(unread.misses(), plain.misses());
