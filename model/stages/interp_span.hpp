@@ -506,8 +506,11 @@ class FusedSpan {
         ++counts_.segments_high;
         const int dm = dnorm.m + ed;
         counts_.segments_high_low += dnorm.shift <= 64 ? 1 : 0;
-        const int ds = 63 - wd.db, ns = 63 - wd.nb;
-        const uint64_t dhb = (uint64_t{1} << (ds - 1)) - 1, nhb = (uint64_t{1} << (ns - 1)) - 1;
+        // The rounding of a sum aligned at kAlignMsb: NormalizeAtMsb's shift and bias in the high
+        // word (constants with the default widths).
+        const NormalizeAtMsb dal(wd.db, kAlignMsb), nal(wd.nb, kAlignMsb);
+        const int ds = dal.high_shift(), ns = nal.high_shift();
+        const uint64_t dhb = dal.high_bias(), nhb = nal.high_bias();
         u128 da = dmag << (kAlignMsb - dnorm.m);
         const u128 dsa = dstep << (kAlignMsb - dnorm.m);
         u128 na[kN], nsa[kN];
