@@ -34,54 +34,61 @@ inline void cpu_relax() {
 #endif
 }
 
-// A waiting thread polls before it sleeps: on an idle machine the other threads reach a barrier
-// within microseconds, while a sleeping thread takes tens of microseconds to be woken
-// (docs/speed.md). How long it polls adapts per thread: doubled (up to kSpinMax) after a wait
-// that ended while polling, halved (down to kSpinMin) after one that had to sleep — on a loaded
-// machine, where the thread waited for is often descheduled, polling soon stops costing CPU.
-constexpr std::chrono::nanoseconds kSpinMax{100000}, kSpinMin{1000};
+// A waiting thread polls before it rests (sleeps or yields) for a time adapted per thread and
+// waiting place: next_poll_time (model/unit/threads.hpp; docs/speed.md "Session 13: threads").
 // Polls between two reads of the steady clock (the deadline check) while polling.
 constexpr unsigned kPollsPerClockRead = 64;
 
+using WaitClock = std::chrono::steady_clock;
+// A moment on WaitClock as one word (published beside a state for its waiters).
+inline int64_t wait_clock_now() { return (int64_t)WaitClock::now().time_since_epoch().count(); }
+
 // The one waiting mechanism of the threads (the barriers, the pool's start and end, the rows of
 // a new depth buffer): returns once ready() holds. Polls for the thread's adaptive time, then
-// calls rest(), which returns once ready() holds without spinning the CPU (sleeps or yields).
-template <class Ready, class Rest>
-void poll_then(Ready&& ready, Rest&& rest) {
+// calls rest(), which returns once ready() holds without spinning the CPU (sleeps or yields);
+// published() (read once ready() holds) is the wait_clock_now() at which the state waited for
+// was published, or 0 where the waiter's own clock stands in for it (the wake-up latency then
+// counts as part of the wait).
+template <class Ready, class Rest, class Published>
+void poll_then(Ready&& ready, Rest&& rest, Published&& published) {
   if (ready()) return;
-  thread_local std::chrono::nanoseconds spin = kSpinMax;
-  const auto until = std::chrono::steady_clock::now() + spin;
+  thread_local std::chrono::nanoseconds spin = kThreadPollMax;
+  const int64_t start = wait_clock_now();
+  const auto until = WaitClock::time_point(WaitClock::duration(start)) + spin;
   for (unsigned i = 1;; ++i) {
     cpu_relax();
     if (ready()) {
-      spin = std::min(kSpinMax, spin * 2);
+      spin = next_poll_time(spin, std::chrono::nanoseconds{0}, false);  // it needed less than spin
       return;
     }
-    if (i % kPollsPerClockRead == 0 && std::chrono::steady_clock::now() > until) break;
+    if (i % kPollsPerClockRead == 0 && WaitClock::now() > until) break;
   }
-  spin = std::max(kSpinMin, spin / 2);
   rest();
+  const int64_t at = published();
+  spin = next_poll_time(spin, WaitClock::duration((at != 0 ? at : wait_clock_now()) - start), true);
 }
 
 // A long wait (a barrier, the pool): polls, then sleeps on `cv` (whoever makes ready() true does
 // so holding `m`, then notifies `cv`).
-template <class Ready>
-void spin_then_wait(std::mutex& m, std::condition_variable& cv, Ready&& ready) {
-  poll_then(ready, [&] {
-    std::unique_lock<std::mutex> lock(m);
-    cv.wait(lock, ready);
-  });
+template <class Ready, class Published>
+void spin_then_wait(std::mutex& m, std::condition_variable& cv, Ready&& ready, Published&& published) {
+  poll_then(
+      ready,
+      [&] {
+        std::unique_lock<std::mutex> lock(m);
+        cv.wait(lock, ready);
+      },
+      published);
 }
 
 // A short wait on a state published without a lock, P_ rows at a time (a new depth buffer's rows:
 // a sleeping waiter would need the filling thread to take the lock and notify at every band):
 // polls, then yields the core until ready() holds (more threads than cores: the thread waited
-// for gets to run).
+// for gets to run; the waiter's clock stands in for the publication time).
 template <class Ready>
 void spin_then_yield(Ready&& ready) {
-  poll_then(ready, [&] {
-    while (!ready()) std::this_thread::yield();
-  });
+  poll_then(
+      ready, [&] { while (!ready()) std::this_thread::yield(); }, [] { return int64_t{0}; });
 }
 
 // All threads wait until the last one arrives; the last one runs `last` before releasing them.
@@ -94,6 +101,7 @@ class Barrier {
     if (count_.fetch_add(1, std::memory_order_acq_rel) + 1 == n_) {
       count_.store(0, std::memory_order_relaxed);
       last();
+      released_.store(wait_clock_now(), std::memory_order_relaxed);  // ordered by gen_'s release
       {
         std::lock_guard<std::mutex> lock(m_);
         gen_.store(gen + 1, std::memory_order_release);
@@ -101,13 +109,15 @@ class Barrier {
       cv_.notify_all();
       return;
     }
-    spin_then_wait(m_, cv_, [&] { return gen_.load(std::memory_order_acquire) != gen; });
+    spin_then_wait(m_, cv_, [&] { return gen_.load(std::memory_order_acquire) != gen; },
+                   [&] { return released_.load(std::memory_order_relaxed); });
   }
 
  private:
   const int n_;
   alignas(kCacheLineBytes) std::atomic<int> count_{0};
   alignas(kCacheLineBytes) std::atomic<uint64_t> gen_{0};
+  std::atomic<int64_t> released_{0};  // when the last opening happened (wait_clock_now; poll_then)
   std::mutex m_;
   std::condition_variable cv_;
 };
@@ -319,20 +329,25 @@ class Pool {
     job_ = [](void* p, int w) { (*static_cast<Fn*>(p))(w); };
     arg_ = &fn;
     running_.store(n_ - 1, std::memory_order_relaxed);
+    started_.store(wait_clock_now(), std::memory_order_relaxed);  // ordered by gen_'s release
     {
       std::lock_guard<std::mutex> lock(m_);
       gen_.fetch_add(1, std::memory_order_release);
     }
     cv_.notify_all();
     fn(0);
-    spin_then_wait(done_m_, done_cv_, [&] { return running_.load(std::memory_order_acquire) == 0; });
+    spin_then_wait(
+        done_m_, done_cv_, [&] { return running_.load(std::memory_order_acquire) == 0; },
+        [] { return int64_t{0}; });  // the last worker's end: the waiter's clock stands in for it
   }
 
  private:
   void loop(int w) {
     uint64_t seen = 0;
     for (;;) {
-      spin_then_wait(m_, cv_, [&] { return gen_.load(std::memory_order_acquire) != seen; });
+      spin_then_wait(
+          m_, cv_, [&] { return gen_.load(std::memory_order_acquire) != seen; },
+          [&] { return started_.load(std::memory_order_relaxed); });
       seen = gen_.load(std::memory_order_acquire);
       {
         std::lock_guard<std::mutex> lock(m_);
@@ -352,6 +367,7 @@ class Pool {
   std::mutex m_, done_m_;
   std::condition_variable cv_, done_cv_;
   std::atomic<uint64_t> gen_{0};
+  std::atomic<int64_t> started_{0};  // when run() last started the workers (wait_clock_now; poll_then)
   bool stop_ = false;  // under m_
   std::atomic<int> running_{0};
   void (*job_)(void*, int) = nullptr;
@@ -1172,6 +1188,12 @@ class FrameRun {
 };
 
 }  // namespace
+
+std::chrono::nanoseconds next_poll_time(std::chrono::nanoseconds poll, std::chrono::nanoseconds needed, bool rested) {
+  if (!rested || needed <= kThreadPollMax)  // polling would have ended it (or did): at least twice the need
+    return std::clamp(std::max(poll, needed) * 2, kThreadPollMin, kThreadPollMax);
+  return std::max(kThreadPollMin, poll / 2);  // a long wait: poll less
+}
 
 void run_raster_unit_threads(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,
                              FrameOutput& f, FragmentStore* keep, FragmentSink* sink, const ThreadOptions& opts) {

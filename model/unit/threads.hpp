@@ -43,6 +43,7 @@
 // worker threads and their buffers persist between frames (one pool per calling thread).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -68,6 +69,21 @@ inline constexpr int kThreadBatchPrims = 2048;
 inline constexpr int kThreadStepPixels = 65536;
 // Primitives per setup chunk, the unit the threads claim (docs/speed.md "Session 9: threads").
 inline constexpr int kThreadSetupChunkPrims = 64;
+
+// A thread waiting for another (a barrier between two steps, the pool's start and end, a new
+// depth buffer's rows) polls before it rests — sleeps, or yields its core: on an idle machine the
+// others arrive within microseconds, while a sleeping thread takes tens of microseconds to wake
+// (and its waker pays for the wake-up). How long it polls adapts per thread and waiting place,
+// between these bounds (docs/speed.md "Deterministic threads", "Session 13: threads").
+inline constexpr std::chrono::nanoseconds kThreadPollMax{100000}, kThreadPollMin{1000};
+// Contract: the polling time after a wait that began with `poll`, needed `needed` (from its start
+// to the moment the state waited for was published: a wake-up's latency is not part of it) and
+// ended while polling (rested = false) or after resting. A wait that polling ended, or would have
+// ended had it lasted up to kThreadPollMax, sets it to twice max(poll, needed); a longer one (the
+// thread waited for descheduled on a loaded machine) halves it; within [kThreadPollMin,
+// kThreadPollMax]. (Halving after every rest drove the barriers' polling to kThreadPollMin for
+// good once a few waits outlasted it: every barrier then slept.) No effect on any output.
+std::chrono::nanoseconds next_poll_time(std::chrono::nanoseconds poll, std::chrono::nanoseconds needed, bool rested);
 
 // The phases a thread of run_raster_unit_threads goes through, reported to a ThreadObserver
 // (a bench times them; the model never reads a clock).

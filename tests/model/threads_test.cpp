@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -253,6 +254,36 @@ TEST(Threads, InvalidOptionsAreRejected) {
   for (ThreadOptions o : {ThreadOptions{0, 8, 10}, ThreadOptions{2, 0, 10}, ThreadOptions{2, 8, 0},
                           ThreadOptions{2, 8, 10, 0}, ThreadOptions{2, 8, 10, 100, 0}})
     EXPECT_THROW(run_raster_unit(c.cfg, c.st, c.tris, o), std::invalid_argument);
+}
+
+// The waiting threads' polling time (next_poll_time; docs/speed.md "Session 13: threads"). Waits
+// of a few tens of microseconds — a barrier between two raster steps on an idle machine — keep it
+// long enough to end them by polling, whatever it started at; waits longer than kThreadPollMax
+// (a partner descheduled on a loaded machine) bring it down to kThreadPollMin; it stays within
+// its bounds. The rule the threads used before (halve after any rest) fails the first part: from
+// a polling time below the waits, every wait rests and the time only falls.
+TEST(Threads, PollingTimeFollowsTheWaitsItCouldEnd) {
+  using ns = std::chrono::nanoseconds;
+  for (const ns need : {ns{3000}, ns{45000}, kThreadPollMax}) {
+    for (ns poll : {kThreadPollMin, ns{20000}, kThreadPollMax}) {
+      int rests = 0;
+      for (int i = 0; i < 20; ++i) {
+        const bool rested = need > poll;  // a wait outlasting the polling rests
+        rests += rested;
+        poll = next_poll_time(poll, need, rested);
+        EXPECT_GE(poll, kThreadPollMin);
+        EXPECT_LE(poll, kThreadPollMax);
+      }
+      EXPECT_GE(poll, need) << need.count() << " ns waits";  // the next such wait ends while polling
+      EXPECT_LE(rests, 1) << need.count() << " ns waits";    // at most the first rests
+    }
+  }
+  ns poll = kThreadPollMax;
+  for (int i = 0; i < 20; ++i) poll = next_poll_time(poll, ns{5000000}, true);
+  EXPECT_EQ(poll, kThreadPollMin);
+  // A wait ended while polling doubles it (up to the bound), as before.
+  EXPECT_EQ(next_poll_time(ns{4000}, ns{1000}, false), ns{8000});
+  EXPECT_EQ(next_poll_time(ns{80000}, ns{1000}, false), kThreadPollMax);
 }
 
 TEST(Threads, LargeTrianglesCutIntoRowChunksAtEveryStepSize) {
