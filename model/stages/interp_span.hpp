@@ -40,6 +40,7 @@
 #include "model/stages/depth.hpp"
 #include "model/stages/divide.hpp"
 #include "model/stages/interp.hpp"
+#include "model/stages/pixel_divide.hpp"
 #include "model/unit/fragment_store.hpp"
 #include "model/unit/io.hpp"
 
@@ -121,7 +122,7 @@ class FusedSpan {
 
   // True when the divider stage would divide with div_sig_fast64 (the path this one reproduces)
   // and its significands fit the compact record (quot_bits ≤ kStoredSigBits).
-  static bool applies(const Config& cfg) { return div_fast64_ok(cfg.div) && cfg.div.quot_bits <= kStoredSigBits; }
+  static bool applies(const Config& cfg) { return pixel_divide_applies(cfg.div); }
 
   // with_varyings false: fragments without varyings, as InterpStage / DivideStage.
   FusedSpan(const Config& cfg, const DrawState& st, DepthBufferView buf, bool with_varyings = true)
@@ -131,9 +132,8 @@ class FusedSpan {
         mask_(depth_func_mask(st.depth_func)),
         test_(st.depth_test),
         write_(st.depth_write),
-        widths_{div_align_bits(cfg.div), cfg.div.num_bits, cfg.div.den_bits, cfg.div.quot_bits},
-        default_widths_(widths_.w == DefaultWidths::w && widths_.nb == DefaultWidths::nb &&
-                        widths_.db == DefaultWidths::db && widths_.qb == DefaultWidths::qb) {}
+        widths_(div_widths(cfg.div)),
+        default_widths_(is_default_div_widths(widths_)) {}
 
   // The varyings of each record run() writes (the draw's, or 0 without varyings).
   int num_varyings() const { return nv_; }
@@ -141,15 +141,9 @@ class FusedSpan {
   void set_high_words(bool on) { high_words_ = on; }
 
   // True when every exponent this triangle's fragments can have fits the compact record
-  // (|exp| ≤ kStoredExpMax, model/unit/fragment_store.hpp): the quotient's exponent is
-  // exp_adj + ne + num_exp − de − den_exp − (qb − 1) with |exp_adj| ≤ 1 and ne, de ≤ 127, the
-  // normalised sums' msb positions. The block exponents of any representable scene are far
-  // inside; a triangle outside this goes through the staged stages (FragmentChain::span).
-  bool fits(const TriangleEquations& t) const {
-    int64_t worst = 0;
-    for (int m = 0; m < nv_; ++m) worst = std::max<int64_t>(worst, std::abs((int64_t)t.interp.num_exp[m]));
-    return worst + std::abs((int64_t)t.interp.den_exp) + kExpSlack <= kStoredExpMax;
-  }
+  // (divide_exponents_fit, model/stages/pixel_divide.hpp); a triangle outside this goes through
+  // the staged stages (FragmentChain::span).
+  bool fits(const TriangleEquations& t) const { return divide_exponents_fit(t, nv_); }
 
   // Contract: the spans that follow (run) belong to triangle `t` until the next begin(). run()
   // calls it itself when handed another triangle: another object, or the same object with
@@ -259,29 +253,19 @@ class FusedSpan {
   }
 
  private:
-  // The divider's widths: W = div_align_bits, num_bits, den_bits, quot_bits; the configuration's
-  // at run time, or the defaults as compile-time constants (the loop's shifts and masks fold).
-  struct Widths {
-    int w, nb, db, qb;
-  };
-  static constexpr DivConfig kDefaultDiv{};
-  // Bound on |exp − num_exp + den_exp| (fits): |exp_adj| + 2·127 + (qb − 1 ≤ 62) < 2^9.
-  static constexpr int64_t kExpSlack = int64_t{1} << 9;
-  struct DefaultWidths {
-    static constexpr int nb = kDefaultDiv.num_bits, db = kDefaultDiv.den_bits, qb = kDefaultDiv.quot_bits;
-    static constexpr int w = nb > db ? nb : db;  // div_align_bits
-  };
-
+  // The divider's widths (DivWidths, model/stages/pixel_divide.hpp): the configuration's at run
+  // time, or the defaults as compile-time constants (DefaultDivWidths: the loop's shifts and
+  // masks fold).
   static constexpr int kPrefetchRows = 8;  // begin()'s prefetch: the bunny's rectangles are 1–8 rows
 
   // The divider widths as compile-time constants where they are the defaults.
   uint64_t run_w(const TriangleEquations& t, const Span& sp, const DepthStepperT<int64_t>& z, uint8_t* out) {
     ++counts_.spans_z64;
-    if (default_widths_) return run_nv(t, sp, z, DefaultWidths{}, out);
+    if (default_widths_) return run_nv(t, sp, z, DefaultDivWidths{}, out);
     return run_nv(t, sp, z, widths_, out);
   }
   [[gnu::always_inline]] uint64_t run_w(const TriangleEquations& t, const Span& sp, const DepthStepper& dz, int64_t n, uint8_t* out) {
-    if (default_widths_) return run_z(t, sp, dz, n, DefaultWidths{}, out);
+    if (default_widths_) return run_z(t, sp, dz, n, DefaultDivWidths{}, out);
     return run_z(t, sp, dz, n, widths_, out);
   }
 
@@ -612,7 +596,7 @@ class FusedSpan {
   DepthBufferView buf_;
   unsigned mask_;
   bool test_, write_;
-  Widths widths_;
+  DivWidths widths_;
   bool default_widths_;
   bool high_words_ = true;  // the 64-bit-word segments (the tests turn them off to compare)
   Sum den_;

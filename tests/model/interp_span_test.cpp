@@ -25,6 +25,7 @@
 #include "model/unit/fragment_store.hpp"
 #include "model/unit/geometry.hpp"
 #include "tests/model/geom_ref.hpp"
+#include "tests/model/random_tris.hpp"
 
 using namespace fxr;
 
@@ -44,25 +45,6 @@ DrawState viewport_state(int nv) {
   st.viewport_x = 2, st.viewport_y = -3, st.viewport_w = kW, st.viewport_h = kH;
   st.num_varyings = nv;
   return st;
-}
-
-// Random triangles, overlapping in depth, some large (long spans), some crossing w = 0 (clipped).
-std::vector<ClipTriangle> random_tris(uint64_t seed, int n, int nv) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<float> pos(-1.3f, 1.3f), zf(-0.2f, 1.0f), wf(0.05f, 6.0f), var(-5.0f, 5.0f);
-  std::vector<ClipTriangle> v;
-  for (int t = 0; t < n; ++t) {
-    ClipTriangle tri;
-    const float big = t % 5 == 0 ? 4.0f : 1.0f;
-    for (auto& x : tri.v) {
-      const float w = wf(rng);
-      x.pos[0] = pos(rng) * w * big, x.pos[1] = pos(rng) * w * big, x.pos[2] = zf(rng) * w, x.pos[3] = w;
-      // Varyings of both signs (N crosses zero inside the triangle), one nearly constant.
-      for (int k = 0; k < nv; ++k) x.var[k] = k == 3 ? 1.0f + var(rng) * 1e-6f : var(rng);
-    }
-    v.push_back(tri);
-  }
-  return v;
 }
 
 // Small triangles (1–8 pixels across, the bunny's size) at random places, overlapping in depth.
