@@ -6,6 +6,8 @@
 #include <climits>
 #include <string>
 
+#include "model/arith/round_flat.hpp"
+
 namespace fxr {
 
 namespace {
@@ -84,21 +86,19 @@ bool rne_quotient_plus64(bool neg, uint64_t N, int k, uint64_t D, int64_t C, int
     den = D << (-k);
   }
   const uint64_t q = num / den, r = num % den;
-  int64_t fl;
-  uint64_t frac_num;
-  if (!neg) {
-    fl = C + (int64_t)q;
-    frac_num = r;
-  } else if (r == 0) {
-    *out = C - (int64_t)q;
-    return true;
-  } else {
-    fl = C - (int64_t)q - 1;
-    frac_num = den - r;
-  }
-  const uint64_t twice = frac_num << 1;
-  if (twice > den || (twice == den && (fl & 1))) fl += 1;
-  *out = fl;
+  // ±num/den = qf + frac_num/den with qf = floor: q, r when positive; −q − 1, den − r when
+  // negative with r ≠ 0; −q, 0 when negative with r = 0 (the i128 path's three cases). Formed
+  // with masks, not branches: the sign is data-dependent (half of a mesh's x_c and y_c are
+  // negative) and the branch on it, with the rounding's on 2·frac_num > den, was mispredicted
+  // about 1.4 times a call (callgrind --branch-sim; docs/speed.md "Session 13: per vertex and per
+  // triangle"). Wrapping uint64 arithmetic: C ± q − 1 fits int64 (the range test above).
+  const uint64_t neg_mask = (uint64_t)0 - (uint64_t)neg;               // all ones when negative
+  const uint64_t r_zero = (uint64_t)(r == 0);
+  const uint64_t qf = (q ^ neg_mask) + (neg_mask & r_zero);           // ~q = −q − 1
+  const uint64_t flip = neg_mask & (r_zero - 1);                       // negative and r ≠ 0
+  const uint64_t frac_num = r ^ ((r ^ (den - r)) & flip);
+  const int64_t fl = (int64_t)((uint64_t)C + qf);
+  *out = fl + (int64_t)rne_round_up_flat<uint64_t>((uint64_t)fl, frac_num, den);
   return true;
 }
 
@@ -126,7 +126,9 @@ bool attr_quotient64(const FxFloat& n, const FxFloat& w, int bits, FxFloat* out)
   uint64_t sig = q >> extra;
   const bool guard = (q >> (extra - 1)) & 1;
   const bool sticky = rem || (q & ((((uint64_t)1) << (extra - 1)) - 1)) != 0;
-  if (guard && (sticky || (sig & 1))) sig += 1;
+  // The rounding from flags, without a branch (data-dependent; docs/speed.md "Session 13: per
+  // vertex and per triangle").
+  sig += (uint64_t)(guard & (sticky | ((sig & 1) != 0)));
   int e = extra;
   if (sig >> bits) sig >>= 1, e += 1;
   f.sig = sig;
@@ -374,11 +376,14 @@ AttrTerms64 attr_edge_terms64_int(const Config& cfg, const SetupTriangle& tri, c
       return AttrTerms64::Wide;
   }
   if (c[0] == 0) return AttrTerms64::ZeroArea;
-  if (c[0] < 0) {
-    for (int k = 0; k < 3; ++k) {
-      a[k] = -a[k], b[k] = -b[k];
-      if (__builtin_sub_overflow((int64_t)0, c[k], &c[k])) return AttrTerms64::Wide;
-    }
+  // The clockwise triangle negated by a mask (x ^ m) − m, m = −1 when c[0] < 0: a branch on the
+  // winding was mispredicted (docs/speed.md "Session 13: per vertex and per triangle"). Only
+  // c = −2^63 has no int64 negation (|a|, |b| are small): Wide, as the overflow check answered.
+  const int64_t m = c[0] >> 63;
+  if (m != 0 && (c[0] == INT64_MIN || c[1] == INT64_MIN || c[2] == INT64_MIN)) return AttrTerms64::Wide;
+  for (int k = 0; k < 3; ++k) {
+    a[k] = (a[k] ^ m) - m, b[k] = (b[k] ^ m) - m;
+    c[k] = (int64_t)(((uint64_t)c[k] ^ (uint64_t)m) - (uint64_t)m);
   }
   // attr_edge_terms at the anchor (t.x0, t.y0): X0 = i0·2^F + 2^(F−1) − ox at F bits (< 2^62).
   const int64_t unit = (int64_t)1 << F, h = (int64_t)1 << (F - 1);

@@ -22,6 +22,16 @@ PixelRect draw_rect(const DrawState& st) {
   return r;
 }
 
+// The least and the greatest of three, each as two selects the compiler makes conditional moves.
+static inline int64_t min3_flat(int64_t a, int64_t b, int64_t c) {
+  const int64_t m = b < a ? b : a;
+  return c < m ? c : m;
+}
+static inline int64_t max3_flat(int64_t a, int64_t b, int64_t c) {
+  const int64_t m = b > a ? b : a;
+  return c > m ? c : m;
+}
+
 // floor(a / 2^s) and ceil(a / 2^s) for signed a (arithmetic shift is floor).
 static int64_t floor_shift(int64_t a, int s) { return a >> s; }
 static int64_t ceil_shift(int64_t a, int s) { return -((-a) >> s); }
@@ -76,12 +86,14 @@ SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const PixelR
   if ((st.cull == CullMode::Back && !front) || (st.cull == CullMode::Front && front))
     return SetupOutcome::CulledBackface;
   EdgeEq* const e = out.e;
-  if (ccw) {
-    for (int k = 0; k < 3; ++k) e[k].a = ea[k], e[k].b = eb[k], e[k].c = ec[k];
-  } else {  // normalise the winding: −E of a → b is E of b → a (exact)
-    for (int k = 0; k < 3; ++k) e[k].a = -ea[k], e[k].b = -eb[k], e[k].c = -ec[k];
-    area2 = -area2;
-  }
+  // Normalise the winding: −E of a → b is E of b → a (exact: |values| < 2^(2cb) ≤ 2^62). By a
+  // mask (x ^ m) − m, m = −1 for clockwise: a branch on the winding (half of a mesh's triangles
+  // with the culling off) was mispredicted (docs/speed.md "Session 13: per vertex and per
+  // triangle").
+  const int64_t m = -(int64_t)!ccw;
+  const auto wind = [m](int64_t v) { return (v ^ m) - m; };
+  for (int k = 0; k < 3; ++k) e[k].a = wind(ea[k]), e[k].b = wind(eb[k]), e[k].c = wind(ec[k]);
+  area2 = wind(area2);
   // Top-left rule (see the header): the gradient (a, b) points inside.
   for (int k = 0; k < 3; ++k) {
     EdgeEq& q = e[k];
@@ -91,8 +103,11 @@ SetupOutcome setup_triangle(const Config& cfg, const DrawState& st, const PixelR
   }
   // Candidate pixels: centres X = i·2^g + 2^(g−1) within [min x, max x], likewise y.
   const int64_t h = (int64_t)1 << (g - 1);
-  const int64_t xmin = std::min({x[0], x[1], x[2]}), xmax = std::max({x[0], x[1], x[2]});
-  const int64_t ymin = std::min({y[0], y[1], y[2]}), ymax = std::max({y[0], y[1], y[2]});
+  // Without branches (which vertex is the least is data-dependent: std::min's compare-and-jump
+  // was mispredicted about once a triangle per coordinate, docs/speed.md "Session 13: per vertex
+  // and per triangle"); conditional moves.
+  const int64_t xmin = min3_flat(x[0], x[1], x[2]), xmax = max3_flat(x[0], x[1], x[2]);
+  const int64_t ymin = min3_flat(y[0], y[1], y[2]), ymax = max3_flat(y[0], y[1], y[2]);
   // dr = setup_rect: the draw rectangle within the window coordinate range.
   const int64_t bx0 = std::max<int64_t>(ceil_shift(xmin - h, g), dr.x0);
   const int64_t bx1 = std::min<int64_t>(floor_shift(xmax - h, g), dr.x1);

@@ -5,6 +5,8 @@
 
 #include "model/stages/recip.hpp"
 
+#include "model/arith/round_flat.hpp"
+
 namespace fxr {
 
 namespace {
@@ -68,8 +70,10 @@ bool round_scaled_sum64(int64_t m, int e, int64_t c, int sh, int64_t* out) {
   // (so q, r and (q + c)·4 fit: |q + c| < 2^kSnapFast64Bits). Then the i128 path's steps in int64.
   constexpr int64_t kM = (int64_t)1 << kSnapFast64Bits, kC = (int64_t)1 << (kSnapFast64Bits - 1);
   if (m >= kM || m <= -kM || c >= kC || c <= -kC || sh < 0 || sh + 2 > kInt64ShiftMax) return false;
+  // The rounding without a branch on the dropped bits (data-dependent: mispredicted about 1.4
+  // times a call; docs/speed.md "Session 13: per vertex and per triangle").
   const auto rne = [](int64_t x, int s) {
-    return s == 0 ? x : detail::shift_round_right<int64_t, uint64_t>(x, s, Round::HalfEven);
+    return s == 0 ? x : detail::shift_round_right_rne_flat<int64_t, uint64_t>(x, s);
   };
   if (m == 0) {
     *out = rne(c, sh);
@@ -93,6 +97,12 @@ bool round_scaled_sum64(int64_t m, int e, int64_t c, int sh, int64_t* out) {
 }
 
 namespace {
+// ±mag (mag < 2^63) by masks: a branch on the sign, data-dependent, was mispredicted (docs/speed.md
+// "Session 13: per vertex and per triangle").
+inline int64_t signed_by(uint64_t mag, bool neg) {
+  const uint64_t m = (uint64_t)0 - (uint64_t)neg;
+  return (int64_t)((mag ^ m) - m);
+}
 // snap_window's range check of a code.
 int64_t window_code(i128 code, bool r, const RasterConfig& rc, bool* range) {
   const int code_bits = rc.window_int_bits + rc.subpixel_bits;  // signed
@@ -114,7 +124,7 @@ int64_t snap_window(const FxProd& n, int64_t size, int64_t origin, const RasterC
   if ((n.sig >> 64) == 0 && size > 0 && s >= 0 && s < kInt64ShiftMax &&
       !__builtin_mul_overflow((uint64_t)n.sig, (uint64_t)size, &mag) && mag < ((uint64_t)1 << kSnapFast64Bits) &&
       !__builtin_mul_overflow(size + 2 * origin, (int64_t)1 << s, &c) &&
-      round_scaled_sum64(n.neg ? -(int64_t)mag : (int64_t)mag, n.exp + s, c, 1, &code))
+      round_scaled_sum64(signed_by(mag, n.neg), n.exp + s, c, 1, &code))
     return window_code(code, false, rc, range);
   return snap_window_wide(n, size, origin, rc, range);
 }

@@ -83,6 +83,17 @@ class VertexCache;
 // atomic accesses are aligned to it. vertex_table_words: table words holding `bytes` bytes.
 inline constexpr size_t kVertexTableWordBytes = sizeof(uint64_t);
 constexpr size_t vertex_table_words(size_t bytes) { return (bytes + kVertexTableWordBytes - 1) / kVertexTableWordBytes; }
+// A slot's stride is a multiple of half a cache line: a slot then starts at a line's first or
+// second half and spans the fewest lines its bytes can (0 varyings: 88 → 96 bytes, always 2
+// lines; 2 varyings: 144 → 160, always 3), where strides of whole words spanned 2.25 and 3.25
+// lines on average and the slot prefetch's loop ran 2 or 3 (3 or 4) times by the slot's
+// position, a mispredicted exit (docs/speed.md "Session 13: per vertex and per triangle"). A
+// table holds as many slots as with unpadded strides at every varying count.
+inline constexpr size_t kVertexSlotAlignBytes = 32;
+static_assert(kVertexSlotAlignBytes % kVertexTableWordBytes == 0, "a stride is whole table words");
+constexpr size_t vertex_slot_stride_bytes(size_t bytes) {
+  return (bytes + kVertexSlotAlignBytes - 1) / kVertexSlotAlignBytes * kVertexSlotAlignBytes;
+}
 
 // A slot's state keeps 2 bits beside its epoch (VertexCache's kAccepted / kNotAccepted): the
 // epochs of a table kept from draw to draw run up to this, then its words are cleared.
@@ -301,15 +312,16 @@ class VertexCache {
   static constexpr size_t kWordBytes = kVertexTableWordBytes;
   static constexpr size_t round_up_to_word(size_t bytes) { return vertex_table_words(bytes) * kWordBytes; }
   static constexpr size_t kMaxSlotWords =
-      vertex_table_words(vertex_table_words(kKeyOffset + (4 + kMaxVaryings) * sizeof(uint32_t)) * kWordBytes +
-                         kMaxVaryings * sizeof(FxFloat));
+      vertex_slot_stride_bytes(vertex_table_words(kKeyOffset + (4 + kMaxVaryings) * sizeof(uint32_t)) * kWordBytes +
+                             kMaxVaryings * sizeof(FxFloat)) / kWordBytes;
   static_assert(kKeyOffset % kWordBytes == 0, "the key words start on a table word");
 
   // The slot layout of nv_ varyings, in a table of at most `bytes`.
   void layout(size_t bytes) {
     kw_ = 4 + (size_t)nv_;
     vw_offset_ = round_up_to_word(kKeyOffset + kw_ * sizeof(uint32_t));
-    stride_ = round_up_to_word(vw_offset_ + (size_t)nv_ * sizeof(FxFloat)) / kWordBytes;  // in words
+    used_ = round_up_to_word(vw_offset_ + (size_t)nv_ * sizeof(FxFloat)) / kWordBytes;  // in words
+    stride_ = vertex_slot_stride_bytes(used_ * kWordBytes) / kWordBytes;
     while (bits_ > 8 && ((stride_ * kWordBytes) << bits_) > bytes) --bits_;
   }
   // The table of a cache without a shared one: its thread's KeptVertexTable at a new epoch (its
@@ -403,10 +415,10 @@ class VertexCache {
   unsigned char* slot_of(const ClipVertex& cv) const {
     return reinterpret_cast<unsigned char*>(table_ + index(cv) * stride_);
   }
-  // Every cache line of a slot (a slot of 144 bytes at 2 varyings spans 3 lines where it starts
-  // past a line's first 32 bytes; the head, key and varyings are all read on a hit).
+  // Every cache line of a slot (the head, key and varyings are all read on a hit; a stride of
+  // half lines: the same count of lines for every slot).
   void prefetch_slot(const unsigned char* slot) const {
-    const uintptr_t last = reinterpret_cast<uintptr_t>(slot) + stride_ * kWordBytes - 1;
+    const uintptr_t last = reinterpret_cast<uintptr_t>(slot) + used_ * kWordBytes - 1;
     for (uintptr_t line = reinterpret_cast<uintptr_t>(slot) & ~(uintptr_t)(kCacheLine - 1); line <= last;
          line += kCacheLine)
       __builtin_prefetch(reinterpret_cast<const void*>(line));
@@ -501,7 +513,7 @@ class VertexCache {
     if (idle && filled(state) && same_key_shared(slot, cv)) {
       copy[0] = w0;
       for (size_t k = 1; k < kKeyOffset / kWordBytes; ++k) copy[k] = __atomic_load_n(slot + k, __ATOMIC_RELAXED);
-      for (size_t k = vw_offset_ / kWordBytes; k < stride_; ++k) copy[k] = __atomic_load_n(slot + k, __ATOMIC_RELAXED);
+      for (size_t k = vw_offset_ / kWordBytes; k < used_; ++k) copy[k] = __atomic_load_n(slot + k, __ATOMIC_RELAXED);
       __atomic_thread_fence(__ATOMIC_ACQUIRE);
       if (__atomic_load_n(slot, __ATOMIC_RELAXED) == w0) {  // nothing written since w0: the key compare held
         ++hits_;
@@ -520,13 +532,13 @@ class VertexCache {
     if (!idle || !__atomic_compare_exchange_n(slot, &expect, busy, false, __ATOMIC_ACQUIRE, __ATOMIC_RELAXED))
       return ok;  // another thread writes the slot
     __atomic_thread_fence(__ATOMIC_RELEASE);
-    std::memset(copy, 0, stride_ * kWordBytes);
+    std::memset(copy, 0, used_ * kWordBytes);
     unsigned char* c = reinterpret_cast<unsigned char*>(copy);
     std::memcpy(c + kKeyOffset, key_bytes(cv), kw_ * sizeof(uint32_t));
     write_head(c, ok, out);
     const uint32_t next_seq = seq + 2;  // even again: written
     std::memcpy(c + offsetof(Head, seq), &next_seq, sizeof(next_seq));
-    for (size_t k = 1; k < stride_; ++k) __atomic_store_n(slot + k, copy[k], __ATOMIC_RELAXED);
+    for (size_t k = 1; k < used_; ++k) __atomic_store_n(slot + k, copy[k], __ATOMIC_RELAXED);
     __atomic_store_n(slot, copy[0], __ATOMIC_RELEASE);
     return ok;
   }
@@ -554,6 +566,7 @@ class VertexCache {
   uint64_t prims_ = 0, hits_ = 0, misses_ = 0;
   int bits_;
   size_t kw_ = 4, vw_offset_ = 0, stride_ = 0;
+  size_t used_ = 0;  // the words of a slot in use (the stride's padding past them is never read)
   VertexTableWords buf_;  // the table, when neither shared nor the thread's kept one
   KeptLease kept_;
   uint64_t* table_ = nullptr;

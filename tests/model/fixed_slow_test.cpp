@@ -2,12 +2,14 @@
 // directed and GMP-checked cases are in fixed_test.cpp, docs/speed.md):
 //   normalize()'s 64-bit-word path (normalize_rne64) against the generic u128 path;
 //   rne_high_word (the fused span's normalisation in 64-bit words) against NormalizeAtMsb's u128 path;
-//   udivmod128 / floor_divmod (the hardware 128-by-64 division) against the compiler's i128 / and %.
+//   udivmod128 / floor_divmod (the hardware 128-by-64 division) against the compiler's i128 / and %;
+//   shift_round_right_rne_flat (the branch-free RNE) against shift_round_right.
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "model/arith/fixed.hpp"
+#include "model/arith/round_flat.hpp"
 
 using namespace fxr;
 
@@ -81,4 +83,22 @@ TEST(DivMod128Slow, FloorDivisionEqualsTheI128DivisionOn1e8RandomOperands) {
   EXPECT_EQ(mism, 0);
   EXPECT_GT(fast, kCases / 4);  // both outcomes of the fast-path test are reached
   EXPECT_LT(fast, kCases - kCases / 4);
+}
+
+// shift_round_right_rne_flat (the per-vertex snap's branch-free RNE, docs/speed.md "Session 13:
+// per vertex and per triangle") against shift_round_right(…, Round::HalfEven), a tie at every
+// eighth case.
+TEST(RneFlatSlow, ShiftRoundRightEqualsTheBranchingPathOn1e8RandomValues) {
+  std::mt19937_64 rng(1303);
+  long mism = 0;
+  for (long i = 0; i < kCases; ++i) {
+    const uint64_t r0 = rng();
+    int64_t x = (int64_t)rng() >> (r0 % 64);
+    const int s = 1 + (int)((r0 >> 8) % kInt64ShiftMax);
+    if ((r0 >> 16) % 8 == 0) x = (x & ~(int64_t)((uint64_t{1} << s) - 1)) | (int64_t)(uint64_t{1} << (s - 1));
+    if (detail::shift_round_right_rne_flat<int64_t, uint64_t>(x, s) !=
+        detail::shift_round_right<int64_t, uint64_t>(x, s, Round::HalfEven))
+      ++mism;
+  }
+  EXPECT_EQ(mism, 0);
 }

@@ -2,9 +2,11 @@
 #include <gmpxx.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "model/arith/fixed.hpp"
+#include "model/arith/round_flat.hpp"
 
 using namespace fxr;
 
@@ -323,5 +325,76 @@ TEST(DivMod128, FloorDivisionEqualsGmpAtTheFastPathBoundary) {
   for (const i128 d : {(i128)1, (i128)3, (i128)UINT64_MAX, (i128)two64, (i128)two64 + 1, big}) {
     for (const i128 a : {(i128)0, (i128)1, (i128)-1, big, -big, -big - 1, (i128)two64 * 5 - 1})
       ASSERT_TRUE(same_floor_divmod(a, d));
+  }
+}
+
+// ---- the branch-free RNE of the per-vertex paths (docs/speed.md "Session 13: per vertex and per
+// triangle") ------------------------------------------------------------------------------------
+
+namespace {
+// The rule from its definition, in exact GMP arithmetic: up when r/den > ½, or = ½ and q odd.
+bool ref_rne_up(const mpz_class& q, const mpz_class& r, const mpz_class& den) {
+  const int c = cmp(2 * r, den);
+  return c > 0 || (c == 0 && mpz_odd_p(q.get_mpz_t()));
+}
+mpz_class to_mpz_u(u128 v) { return to_mpz((i128)(v >> 1)) * 2 + (unsigned long)(v & 1); }
+}  // namespace
+
+// rne_round_up_flat against rne_round_up and the rule: every q parity, den < 2^9 and r < den
+// (exhaustive) in four integer types; directed cases near the top of the uint64 domain (2r must
+// fit: den and r below 2^63) and the u128 one; 10^6 random cases of random magnitude.
+TEST(RneFlat, DecisionEqualsRneRoundUpAndTheRuleExhaustivelyAndOnRandomOperands) {
+  for (uint64_t q = 0; q < 4; ++q)
+    for (uint64_t den = 1; den < 512; ++den)
+      for (uint64_t r = 0; r < den; ++r) {
+        const bool ref = ref_rne_up(mpz_class((unsigned long)q), mpz_class((unsigned long)r), mpz_class((unsigned long)den));
+        ASSERT_EQ(rne_round_up_flat<uint64_t>(q, r, den), ref) << q << " " << r << " " << den;
+        ASSERT_EQ(rne_round_up_flat<uint64_t>(q, r, den), rne_round_up<uint64_t>(q, r, den));
+        ASSERT_EQ(rne_round_up_flat<int64_t>((int64_t)q - 2, (int64_t)r, (int64_t)den), ref);  // q − 2: same parity
+        ASSERT_EQ(rne_round_up_flat<u128>(q, r, den), ref);
+        ASSERT_EQ(rne_round_up_flat<i128>((i128)q - 2, r, den), ref);
+      }
+  const uint64_t top = (uint64_t{1} << 63) - 1;
+  for (const uint64_t den : {top, top - 1, uint64_t{1} << 62, (uint64_t{1} << 62) + 1})
+    for (const uint64_t r : {den / 2 - 1, den / 2, den / 2 + 1, (den + 1) / 2, den - 1, uint64_t{0}})
+      for (const uint64_t q : {uint64_t{0}, uint64_t{1}, UINT64_MAX}) {
+        ASSERT_EQ(rne_round_up_flat<uint64_t>(q, r, den),
+                  ref_rne_up(to_mpz_u(q), to_mpz_u(r), to_mpz_u(den)));
+        ASSERT_EQ(rne_round_up_flat<uint64_t>(q, r, den), rne_round_up<uint64_t>(q, r, den));
+      }
+  std::mt19937_64 rng(1301);
+  long ties = 0;
+  for (int i = 0; i < 1000000; ++i) {
+    const uint64_t den = std::max<uint64_t>(1, rng() >> (1 + rng() % 63));
+    uint64_t r = rng() % den;
+    if (i % 8 == 0 && den % 2 == 0) r = den / 2, ++ties;  // ties of both q parities
+    const uint64_t q = rng();
+    ASSERT_EQ(rne_round_up_flat<uint64_t>(q, r, den), ref_rne_up(to_mpz_u(q), to_mpz_u(r), to_mpz_u(den)));
+  }
+  EXPECT_GT(ties, 10000);
+}
+
+// shift_round_right_rne_flat against shift_round_right (Round::HalfEven) and GMP's rational
+// rounding: every x in [−2^13, 2^13] at every shift 1 … 15 (exhaustive); directed x at the int64
+// ends and ties at every shift up to kInt64ShiftMax; 10^6 random x of random magnitude and shift.
+TEST(RneFlat, ShiftRoundRightEqualsTheBranchingPathAndGmp) {
+  const auto check = [](int64_t x, int s) {
+    const int64_t f = detail::shift_round_right_rne_flat<int64_t, uint64_t>(x, s);
+    ASSERT_EQ(f, (detail::shift_round_right<int64_t, uint64_t>(x, s, Round::HalfEven))) << x << " " << s;
+    ASSERT_EQ(to_mpz(f), ref_round(to_mpz(x), s, Round::HalfEven)) << x << " " << s;
+  };
+  for (int s = 1; s <= 15; ++s)
+    for (int64_t x = -(1 << 13); x <= (1 << 13); ++x) check(x, s);
+  for (int s = 1; s <= kInt64ShiftMax; ++s) {
+    const int64_t h = (int64_t)1 << (s - 1);
+    for (const int64_t x : {INT64_MAX, INT64_MIN, INT64_MIN + 1, INT64_MAX - 1, h, -h, 3 * h, -3 * h, h - 1, h + 1,
+                            (int64_t)0, (int64_t)-1, (int64_t)1})
+      check(x, s);
+  }
+  std::mt19937_64 rng(1302);
+  for (int i = 0; i < 1000000; ++i) {
+    const int64_t x = (int64_t)rng() >> (rng() % 64);
+    const int s = 1 + (int)(rng() % kInt64ShiftMax);
+    check(x, s);
   }
 }
