@@ -16,6 +16,8 @@
 #include <string>
 #include <thread>
 
+#include <sched.h>
+
 #include "model/unit/chain.hpp"
 #include "model/unit/line_chain.hpp"
 
@@ -35,7 +37,7 @@ inline void cpu_relax() {
 }
 
 // A waiting thread polls before it rests (sleeps or yields) for a time adapted per thread and
-// waiting place: next_poll_time (model/unit/threads.hpp; docs/speed.md "Session 13: threads").
+// waiting place: next_poll_state (model/unit/threads.hpp; docs/speed.md "Session 13: threads").
 // Polls between two reads of the steady clock (the deadline check) while polling.
 constexpr unsigned kPollsPerClockRead = 64;
 
@@ -43,37 +45,54 @@ using WaitClock = std::chrono::steady_clock;
 // A moment on WaitClock as one word (published beside a state for its waiters).
 inline int64_t wait_clock_now() { return (int64_t)WaitClock::now().time_since_epoch().count(); }
 
+// Whether a thread of a group of `threads` polls while it waits: not when the group has more
+// threads than the cores the process may run on — a poller may then hold the core the thread it
+// waits for needs, and the wait grows with the polling (docs/speed.md "Session 13: threads").
+bool polling_pays(int threads) {
+  static const int cores = [] {  // the cores this process may run on (0: unknown)
+    cpu_set_t set;
+    if (sched_getaffinity(0, sizeof(set), &set) == 0) return CPU_COUNT(&set);
+    return (int)std::thread::hardware_concurrency();
+  }();
+  return cores == 0 || threads <= cores;
+}
+
 // The one waiting mechanism of the threads (the barriers, the pool's start and end, the rows of
-// a new depth buffer): returns once ready() holds. Polls for the thread's adaptive time, then
-// calls rest(), which returns once ready() holds without spinning the CPU (sleeps or yields);
+// a new depth buffer): returns once ready() holds. Polls for the thread's adaptive time (none
+// when !poll: polling_pays), then calls rest(), which returns once ready() holds without
+// spinning the CPU (sleeps or yields);
 // published() (read once ready() holds) is the wait_clock_now() at which the state waited for
 // was published, or 0 where the waiter's own clock stands in for it (the wake-up latency then
 // counts as part of the wait).
 template <class Ready, class Rest, class Published>
-void poll_then(Ready&& ready, Rest&& rest, Published&& published) {
+void poll_then(bool poll, Ready&& ready, Rest&& rest, Published&& published) {
   if (ready()) return;
-  thread_local std::chrono::nanoseconds spin = kThreadPollMax;
+  if (!poll) {
+    rest();
+    return;
+  }
+  thread_local PollState state;
   const int64_t start = wait_clock_now();
-  const auto until = WaitClock::time_point(WaitClock::duration(start)) + spin;
+  const auto until = WaitClock::time_point(WaitClock::duration(start)) + state.poll;
   for (unsigned i = 1;; ++i) {
     cpu_relax();
     if (ready()) {
-      spin = next_poll_time(spin, std::chrono::nanoseconds{0}, false);  // it needed less than spin
+      state = next_poll_state(state, std::chrono::nanoseconds{0}, false);  // it needed less than state.poll
       return;
     }
     if (i % kPollsPerClockRead == 0 && WaitClock::now() > until) break;
   }
   rest();
   const int64_t at = published();
-  spin = next_poll_time(spin, WaitClock::duration((at != 0 ? at : wait_clock_now()) - start), true);
+  state = next_poll_state(state, WaitClock::duration((at != 0 ? at : wait_clock_now()) - start), true);
 }
 
 // A long wait (a barrier, the pool): polls, then sleeps on `cv` (whoever makes ready() true does
 // so holding `m`, then notifies `cv`).
 template <class Ready, class Published>
-void spin_then_wait(std::mutex& m, std::condition_variable& cv, Ready&& ready, Published&& published) {
+void spin_then_wait(bool poll, std::mutex& m, std::condition_variable& cv, Ready&& ready, Published&& published) {
   poll_then(
-      ready,
+      poll, ready,
       [&] {
         std::unique_lock<std::mutex> lock(m);
         cv.wait(lock, ready);
@@ -86,15 +105,15 @@ void spin_then_wait(std::mutex& m, std::condition_variable& cv, Ready&& ready, P
 // polls, then yields the core until ready() holds (more threads than cores: the thread waited
 // for gets to run; the waiter's clock stands in for the publication time).
 template <class Ready>
-void spin_then_yield(Ready&& ready) {
+void spin_then_yield(bool poll, Ready&& ready) {
   poll_then(
-      ready, [&] { while (!ready()) std::this_thread::yield(); }, [] { return int64_t{0}; });
+      poll, ready, [&] { while (!ready()) std::this_thread::yield(); }, [] { return int64_t{0}; });
 }
 
 // All threads wait until the last one arrives; the last one runs `last` before releasing them.
 class Barrier {
  public:
-  explicit Barrier(int n) : n_(n) {}
+  explicit Barrier(int n) : n_(n), poll_(polling_pays(n)) {}
   template <class Last>
   void wait(Last&& last) {
     const uint64_t gen = gen_.load(std::memory_order_acquire);
@@ -109,12 +128,13 @@ class Barrier {
       cv_.notify_all();
       return;
     }
-    spin_then_wait(m_, cv_, [&] { return gen_.load(std::memory_order_acquire) != gen; },
+    spin_then_wait(poll_, m_, cv_, [&] { return gen_.load(std::memory_order_acquire) != gen; },
                    [&] { return released_.load(std::memory_order_relaxed); });
   }
 
  private:
   const int n_;
+  const bool poll_;  // polling_pays(n_)
   alignas(kCacheLineBytes) std::atomic<int> count_{0};
   alignas(kCacheLineBytes) std::atomic<uint64_t> gen_{0};
   std::atomic<int64_t> released_{0};  // when the last opening happened (wait_clock_now; poll_then)
@@ -315,7 +335,7 @@ struct alignas(kCacheLineBytes) Worker {
 // calling thread) and returns when every call has returned.
 class Pool {
  public:
-  explicit Pool(int n) : n_(n), workers_((size_t)n) {
+  explicit Pool(int n) : n_(n), poll_(polling_pays(n)), workers_((size_t)n) {
     for (int w = 1; w < n; ++w) threads_.emplace_back([this, w] { loop(w); });
   }
   ~Pool() {
@@ -347,7 +367,7 @@ class Pool {
     cv_.notify_all();
     fn(0);
     spin_then_wait(
-        done_m_, done_cv_, [&] { return running_.load(std::memory_order_acquire) == 0; },
+        poll_, done_m_, done_cv_, [&] { return running_.load(std::memory_order_acquire) == 0; },
         [] { return int64_t{0}; });  // the last worker's end: the waiter's clock stands in for it
   }
 
@@ -356,7 +376,7 @@ class Pool {
     uint64_t seen = 0;
     for (;;) {
       spin_then_wait(
-          m_, cv_, [&] { return gen_.load(std::memory_order_acquire) != seen; },
+          poll_, m_, cv_, [&] { return gen_.load(std::memory_order_acquire) != seen; },
           [&] { return started_.load(std::memory_order_relaxed); });
       seen = gen_.load(std::memory_order_acquire);
       {
@@ -372,6 +392,7 @@ class Pool {
   }
 
   const int n_;
+  const bool poll_;  // polling_pays(n_)
   std::vector<Worker> workers_;
   std::vector<std::thread> threads_;
   std::mutex m_, done_m_;
@@ -432,7 +453,7 @@ class FrameRun {
         P_(std::min<int64_t>(opts.band_rows, kThreadFineBandRows)), band_rows_{P_, R_}, B_((size_t)opts.batch_prims),
         C_(std::min((size_t)opts.setup_chunk_prims, B_)), step_((uint64_t)opts.step_pixels),
         records_(keep != nullptr || sink != nullptr), nv_(records_ ? st.num_varyings : 0),
-        nbatches_((int64_t)((tris.size() + B_ - 1) / B_)), barrier_(T_) {
+        nbatches_((int64_t)((tris.size() + B_ - 1) / B_)), poll_(polling_pays(T_)), barrier_(T_) {
     for (int g = 0; g < 2; ++g)
       for (int k = 0; k < 31; ++k)
         if (band_rows_[g] == (int64_t)1 << k) band_shift_[g] = k;
@@ -483,6 +504,7 @@ class FrameRun {
     }
     ctl_.fill_depth = reuse_depth_;
     ctl_.setup = nbatches_ > 0 ? 0 : -1;
+    ctl_.route_map = route_map_[0] = next_map_ = -1;  // the first batch: both band maps
     nchunks_[0] = (std::min(B_, tris_.size()) + C_ - 1) / C_;
     // A new depth buffer: filled by the calling thread in step 1 (the first raster step), a band
     // at a time, while the others rasterise the rows already filled; filled before the steps,
@@ -587,7 +609,7 @@ class FrameRun {
   // Before a thread other than 0 rasterises up to row `row` (from the viewport's bottom) in the
   // step that fills a new depth buffer: wait until thread 0 has filled it.
   void wait_rows(int64_t row) {
-    if (ctl_.clear_new) spin_then_yield([&] { return clear_rows_.load(std::memory_order_acquire) > row; });
+    if (ctl_.clear_new) spin_then_yield(poll_, [&] { return clear_rows_.load(std::memory_order_acquire) > row; });
   }
 
   // Step 0 with a reused depth buffer: this thread's bands cleared.
@@ -692,7 +714,8 @@ class FrameRun {
     m.items = ((int64_t)rows - 1) / m.chunk + 1;
     b.weight = add_weight(b.weight, weight);
     b.rows += rows;
-    for (int g = 0; g < 2; ++g) {  // routed in both band maps (decide() picks the batch's)
+    // Routed in the map chosen for the batch before its setup, or in both (decide()).
+    for (int g = ctl_.route_map < 0 ? 0 : ctl_.route_map; g <= (ctl_.route_map < 0 ? 1 : ctl_.route_map); ++g) {
       m.b0[g] = band_of(t.y0, g);
       m.b1[g] = band_of(t.y1, g);
       std::vector<std::vector<size_t>>& route = b.route[g];
@@ -974,9 +997,14 @@ class FrameRun {
       // straddle a coarse band: each straddle is rasterised by two threads), fine ones otherwise
       // (a raster step of a few tall triangles spans few coarse bands: one thread would get most
       // of it). docs/speed.md "Session 12: threads".
+      // The choice is made from a batch's own rows and applies to the next batch, whose setup
+      // then routes each triangle in that map only (a second routing cost the bunny v0 ≈ 0.3 ms
+      // per frame: docs/speed.md "Session 13: threads"); the frame's first batch is routed in
+      // both maps and takes its own choice.
       uint64_t rows = 0;
       for (size_t c = 0; c < nchunks_[q]; ++c) rows += (*chunks_[q])[c].rows;
-      map_[q] = rows < tsum * (uint64_t)P_ ? 1 : 0;
+      next_map_ = rows < tsum * (uint64_t)P_ ? 1 : 0;
+      map_[q] = route_map_[q] >= 0 ? route_map_[q] : next_map_;
       if (obs_) obs_->batch_bands(ctl_.setup, (int)band_rows_[map_[q]]);
       set_up_ = ctl_.setup + 1;
       ctl_.setup = -1;
@@ -997,6 +1025,7 @@ class FrameRun {
     const int64_t busy = ctl_.raster >= 0 ? ctl_.raster : rastered_;
     if (set_up_ < nbatches_ && set_up_ <= busy + 1) {
       ctl_.setup = set_up_;
+      ctl_.route_map = route_map_[set_up_ & 1] = next_map_;
       const size_t lo = (size_t)set_up_ * B_, len = std::min(B_, tris_.size() - lo);
       nchunks_[set_up_ & 1] = (len + C_ - 1) / C_;
       claims_.store(0, std::memory_order_relaxed);
@@ -1145,6 +1174,7 @@ class FrameRun {
   const bool records_;
   const int nv_;
   const int64_t nbatches_;
+  const bool poll_;  // polling_pays(T_)
   Barrier barrier_;
   std::atomic<bool> failed_{false};
   bool reuse_depth_ = false;
@@ -1157,13 +1187,16 @@ class FrameRun {
   SharedVertexTable* vertices_ = nullptr;  // the threads' vertex cache table, or none
   int band_shift_[2] = {-1, -1};  // log2 band_rows_[g] when a power of two
   int map_[2] = {0, 0};  // the band map of each batch parity's batch (0 fine, 1 coarse): decide()
+  int route_map_[2] = {-1, -1};  // the map its triangles were routed in (−1: both)
+  int next_map_ = -1;  // the map chosen from the last batch set up: the next batch's (−1: none yet)
 
   // The step every thread runs next; written by decide() only, between two steps.
   struct Control {
     bool done = false;
     bool fill_depth = false;
     bool clear_new = false;   // thread 0 fills the new depth buffer first; the others wait for their rows
-    int64_t setup = -1;       // batch set up in this step (−1: none)
+    int64_t setup = -1;       // batch set up in this step (−1: none), …
+    int route_map = -1;       // … its triangles routed in this band map (−1: both)
     int64_t raster = -1;      // batch rasterised in this step (−1: none) …
     uint64_t raster_end = 0;  // … its items that start below this weight
     int rec_parity = 1;       // buffers of this step's records (flips at each raster step)
@@ -1199,10 +1232,13 @@ class FrameRun {
 
 }  // namespace
 
-std::chrono::nanoseconds next_poll_time(std::chrono::nanoseconds poll, std::chrono::nanoseconds needed, bool rested) {
-  if (!rested || needed <= kThreadPollMax)  // polling would have ended it (or did): at least twice the need
-    return std::clamp(std::max(poll, needed) * 2, kThreadPollMin, kThreadPollMax);
-  return std::max(kThreadPollMin, poll / 2);  // a long wait: poll less
+PollState next_poll_state(PollState s, std::chrono::nanoseconds needed, bool rested) {
+  if (!rested) return {std::min(kThreadPollMax, s.poll * 2), false, 0};
+  const std::chrono::nanoseconds half = std::max(kThreadPollMin, s.poll / 2);
+  if (s.raised) return {half, false, kThreadPollCooldown};  // raising did not help: poll less for a while
+  if (needed <= kThreadPollMax && s.cooldown == 0)  // polling would have ended it: twice the need
+    return {std::clamp(std::max(s.poll, needed) * 2, kThreadPollMin, kThreadPollMax), true, 0};
+  return {half, false, std::max(0, s.cooldown - 1)};  // a long wait, or cooling down: poll less
 }
 
 void run_raster_unit_threads(const Config& cfg, const DrawState& st, const std::vector<ClipTriangle>& tris,

@@ -10,9 +10,10 @@
 //     chunk's primitives (a pure function of the primitive), count each primitive's disposition
 //     and route each set-up triangle to the threads owning one of its bands;
 //   - the window rows are cut into bands (of `band_rows` rows, or fewer for a batch of tall
-//     triangles: kThreadFineBandRows, chosen per batch after its setup; each set-up triangle is
-//     routed in both band maps), band b (from the viewport's bottom) belongs to thread b mod
-//     threads: within a step a depth-buffer word is touched by one thread only, in the
+//     triangles: kThreadFineBandRows, chosen from a batch's triangles after its setup for the
+//     next batch, whose triangles are routed in that band map only; the frame's first batch is
+//     routed in both and takes its own choice), band b (from the viewport's bottom) belongs to
+//     thread b mod threads: within a step a depth-buffer word is touched by one thread only, in the
 //     sequential order (the barrier between two steps orders the rest), so the depth buffer,
 //     every depth-test result and every fragment are those of the sequential unit;
 //   - a batch is rasterised in steps of about `step_pixels` candidate pixels: the triangles'
@@ -54,10 +55,11 @@
 
 namespace fxr {
 
-// Rows per band: the bands go round-robin to the threads. A batch whose triangles are on average
-// shorter than a fine band is rasterised in bands of band_rows (coarse: few triangles straddle
-// two threads' bands), any other in bands of min(band_rows, kThreadFineBandRows) (fine: a step of
-// a few tall triangles is shared evenly). docs/speed.md "Session 12: threads": measured choice.
+// Rows per band: the bands go round-robin to the threads. A batch is rasterised in bands of
+// band_rows (coarse: few triangles straddle two threads' bands) when the triangles of the batch
+// before it (the frame's first batch: its own) are on average shorter than a fine band, else in
+// bands of min(band_rows, kThreadFineBandRows) (fine: a step of a few tall triangles is shared
+// evenly). docs/speed.md "Session 12: threads" (measured choice), "Session 13: threads".
 inline constexpr int kThreadBandRows = 32;
 // The fine bands' rows; also the rows of a new depth buffer filled and published at a time in the
 // first raster step (and of a piece of a split step's rows claimed in that step).
@@ -76,14 +78,27 @@ inline constexpr int kThreadSetupChunkPrims = 64;
 // (and its waker pays for the wake-up). How long it polls adapts per thread and waiting place,
 // between these bounds (docs/speed.md "Deterministic threads", "Session 13: threads").
 inline constexpr std::chrono::nanoseconds kThreadPollMax{100000}, kThreadPollMin{1000};
-// Contract: the polling time after a wait that began with `poll`, needed `needed` (from its start
-// to the moment the state waited for was published: a wake-up's latency is not part of it) and
-// ended while polling (rested = false) or after resting. A wait that polling ended, or would have
-// ended had it lasted up to kThreadPollMax, sets it to twice max(poll, needed); a longer one (the
-// thread waited for descheduled on a loaded machine) halves it; within [kThreadPollMin,
+// Waits after a raise of the polling time that did not help during which it is not raised again.
+inline constexpr int kThreadPollCooldown = 16;
+// A waiting place's polling state, per thread: how long it polls; whether the last wait there
+// rested and raised that time; waits left before it may be raised again.
+struct PollState {
+  std::chrono::nanoseconds poll = kThreadPollMax;
+  bool raised = false;
+  int cooldown = 0;
+};
+// Contract: the state after a wait that began in state `s`, needed `needed` (from its start to the
+// moment the state waited for was published: a wake-up's latency is not part of it) and ended
+// while polling (rested = false: the time doubles, the cooldown ends) or after resting. A rest
+// that polling up to kThreadPollMax would have ended raises the time to twice max(poll, needed),
+// unless the time is cooling down; a rest right after a raise (raising did not help: the thread
+// waited for is being descheduled, a loaded machine) halves it and starts kThreadPollCooldown
+// waits of cooldown; any other rest halves it (and counts one down); within [kThreadPollMin,
 // kThreadPollMax]. (Halving after every rest drove the barriers' polling to kThreadPollMin for
-// good once a few waits outlasted it: every barrier then slept.) No effect on any output.
-std::chrono::nanoseconds next_poll_time(std::chrono::nanoseconds poll, std::chrono::nanoseconds needed, bool rested);
+// good once a few waits outlasted it: every barrier then slept; raising after every short rest
+// kept polling up on a loaded machine: threads_test took 3–6 times its CPU.) No effect on any
+// output.
+PollState next_poll_state(PollState s, std::chrono::nanoseconds needed, bool rested);
 
 // The phases a thread of run_raster_unit_threads goes through, reported to a ThreadObserver
 // (a bench times them; the model never reads a clock).

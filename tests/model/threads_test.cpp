@@ -218,9 +218,11 @@ class BandCounter final : public ThreadObserver {
 
 }  // namespace
 
-// Batches of tall triangles and batches of triangles a few pixels high in one frame: each batch
-// is rasterised in its own band map (fine bands for the tall ones, coarse for the small), so the
-// same depth words change owner between steps; every frame equals the sequential unit's.
+// Batches of tall triangles and batches of triangles a few pixels high in one frame: a batch is
+// rasterised in the band map chosen from the batch before it (fine bands after tall triangles,
+// coarse after small ones; the first batch from its own), its triangles routed in that map only,
+// so the same depth words change owner between steps and the first small batch is rasterised in
+// fine bands (its map chosen from the last tall one); every frame equals the sequential unit's.
 TEST(Threads, EachBatchChoosesItsBandMap) {
   Case c = random_case(11, 60, 2);
   c.name = "tall then small";
@@ -256,34 +258,52 @@ TEST(Threads, InvalidOptionsAreRejected) {
     EXPECT_THROW(run_raster_unit(c.cfg, c.st, c.tris, o), std::invalid_argument);
 }
 
-// The waiting threads' polling time (next_poll_time; docs/speed.md "Session 13: threads"). Waits
+// The waiting threads' polling time (next_poll_state; docs/speed.md "Session 13: threads"). Waits
 // of a few tens of microseconds — a barrier between two raster steps on an idle machine — keep it
 // long enough to end them by polling, whatever it started at; waits longer than kThreadPollMax
-// (a partner descheduled on a loaded machine) bring it down to kThreadPollMin; it stays within
-// its bounds. The rule the threads used before (halve after any rest) fails the first part: from
-// a polling time below the waits, every wait rests and the time only falls.
+// bring it down to kThreadPollMin, and so do short waits that keep outlasting it after it was
+// raised for them (a partner descheduled on a loaded machine); it stays within its bounds. The
+// rule the threads used before session 13 (halve after any rest) fails the first part: from a
+// polling time below the waits, every wait rests and the time only falls; raising it after
+// every short rest (no cooldown) fails the third.
 TEST(Threads, PollingTimeFollowsTheWaitsItCouldEnd) {
   using ns = std::chrono::nanoseconds;
   for (const ns need : {ns{3000}, ns{45000}, kThreadPollMax}) {
-    for (ns poll : {kThreadPollMin, ns{20000}, kThreadPollMax}) {
+    for (const ns from : {kThreadPollMin, ns{20000}, kThreadPollMax}) {
+      PollState s{from, false, 0};
       int rests = 0;
       for (int i = 0; i < 20; ++i) {
-        const bool rested = need > poll;  // a wait outlasting the polling rests
+        const bool rested = need > s.poll;  // a wait outlasting the polling rests
         rests += rested;
-        poll = next_poll_time(poll, need, rested);
-        EXPECT_GE(poll, kThreadPollMin);
-        EXPECT_LE(poll, kThreadPollMax);
+        s = next_poll_state(s, need, rested);
+        EXPECT_GE(s.poll, kThreadPollMin);
+        EXPECT_LE(s.poll, kThreadPollMax);
       }
-      EXPECT_GE(poll, need) << need.count() << " ns waits";  // the next such wait ends while polling
-      EXPECT_LE(rests, 1) << need.count() << " ns waits";    // at most the first rests
+      EXPECT_GE(s.poll, need) << need.count() << " ns waits";  // the next such wait ends while polling
+      EXPECT_LE(rests, 1) << need.count() << " ns waits";      // at most the first rests
     }
   }
-  ns poll = kThreadPollMax;
-  for (int i = 0; i < 20; ++i) poll = next_poll_time(poll, ns{5000000}, true);
-  EXPECT_EQ(poll, kThreadPollMin);
-  // A wait ended while polling doubles it (up to the bound), as before.
-  EXPECT_EQ(next_poll_time(ns{4000}, ns{1000}, false), ns{8000});
-  EXPECT_EQ(next_poll_time(ns{80000}, ns{1000}, false), kThreadPollMax);
+  PollState s;
+  for (int i = 0; i < 20; ++i) s = next_poll_state(s, ns{5000000}, true);
+  EXPECT_EQ(s.poll, kThreadPollMin);
+  // Short waits that rest whatever the polling time (the thread waited for runs late each time):
+  // raised once per cooldown at most, polling mostly short.
+  s = PollState{ns{20000}, false, 0};
+  int raises = 0;
+  ns total{0};
+  const int n = 4 * kThreadPollCooldown;
+  for (int i = 0; i < n; ++i) {
+    total += s.poll;
+    const PollState next = next_poll_state(s, ns{50000}, true);
+    raises += next.raised;
+    s = next;
+  }
+  EXPECT_LE(raises, n / kThreadPollCooldown + 1);
+  EXPECT_LE(total / n, ns{20000});
+  // A wait ended while polling doubles it (up to the bound) and ends a cooldown.
+  EXPECT_EQ(next_poll_state(PollState{ns{4000}, true, 5}, ns{0}, false).poll, ns{8000});
+  EXPECT_EQ(next_poll_state(PollState{ns{4000}, true, 5}, ns{0}, false).cooldown, 0);
+  EXPECT_EQ(next_poll_state(PollState{ns{80000}, false, 0}, ns{0}, false).poll, kThreadPollMax);
 }
 
 TEST(Threads, LargeTrianglesCutIntoRowChunksAtEveryStepSize) {
