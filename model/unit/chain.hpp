@@ -30,6 +30,7 @@
 #include "model/stages/clip.hpp"
 #include "model/stages/depth.hpp"
 #include "model/stages/divide.hpp"
+#include "model/stages/fused_triangle.hpp"
 #include "model/stages/input.hpp"
 #include "model/stages/interp.hpp"
 #include "model/stages/interp_span.hpp"
@@ -218,9 +219,15 @@ class FragmentChain {
         divide_(cfg, st, sink != nullptr),
         count_only_(sink == nullptr && !st.depth_test && std::is_same<Taps, NoTaps>::value),
         fused_(cfg, st, DepthBufferView{depth, width, st.viewport_x, st.viewport_y}, sink != nullptr),
-        use_fused_(std::is_same<Taps, NoTaps>::value && FusedSpan::applies(cfg)) {
+        use_fused_(std::is_same<Taps, NoTaps>::value && FusedSpan::applies(cfg)),
+        tri_(st, DepthBufferView{depth, width, st.viewport_x, st.viewport_y}),
+        use_tri_(use_fused_ && fused_.num_varyings() == 0) {
     if (sink) sink->draw_state(st);
   }
+
+  // false: every triangle takes the span path (the tests run both and compare).
+  void set_triangle_kernel(bool on) { use_tri_ = on && use_fused_ && fused_.num_varyings() == 0; }
+  const FusedTriangle::Counts& triangle_counts() const { return tri_.counts(); }
 
   // Contract: as fxr::raster_triangle_to() (model/unit/backend.hpp).
   SetupOutcome run(const SetupTriangle& tri) {
@@ -228,6 +235,7 @@ class FragmentChain {
     return setup_.step(tri, [&](const TriangleEquations& eq) {
       taps_.template out<SetupStage>(eq);
       taps_.template in<TraverseStage>(eq);
+      if (use_tri_ && FusedTriangle::narrow(eq.edges) && triangle(eq, eq.edges.y0, eq.edges.y1)) return;
       if (use_fused_) fused_.begin(eq);  // eq is setup's record, rewritten per triangle
       traverse_.step(eq, [&](const Span& sp) { span(eq, sp); });
     });
@@ -237,6 +245,7 @@ class FragmentChain {
   // those rows that run() would traverse (traversal starts a row with a direct evaluation, so
   // the rows do not depend on where it starts), through the same stages.
   void rows(const TriangleEquations& eq, int y0, int y1) {
+    if (use_tri_ && FusedTriangle::narrow(eq.edges) && triangle(eq, y0, y1)) return;
     TriSetup t = eq.edges;
     t.y0 = std::max(t.y0, y0);
     t.y1 = std::min(t.y1, y1);
@@ -250,6 +259,39 @@ class FragmentChain {
   }
 
  private:
+  // Stages 6–10 of a narrow triangle without varyings, rows y0 … y1, in one kernel
+  // (model/stages/fused_triangle.hpp): no Span, no call per span. Its records go to the sink as
+  // span() sends a span's: into the sink's store (room for the whole rectangle reserved once),
+  // else to emit_span, one call per row with passing pixels (FragmentSink's contract: one row
+  // per call). A sink lending memory (span_space) keeps the span path: its room is counted in
+  // fragments (model/unit/threads.cpp WindowSink). false: nothing done (the depth bound failed,
+  // or a lending sink), the caller takes the span path.
+  bool triangle(const TriangleEquations& eq, int y0, int y1) {
+    FusedTriangle::Result res;
+    if (!sink_) {
+      if (!tri_.run(eq, y0, y1, nullptr, res, [](const uint8_t*, size_t) {})) return false;
+    } else if (FragmentStore* store = sink_->record_store(); store && store->num_varyings() == 0) {
+      if (!tri_.run(eq, y0, y1, store->append_space(FusedTriangle::room(eq.edges, y0, y1)), res,
+                    [](const uint8_t*, size_t) {}))
+        return false;
+      store->append_commit((size_t)res.passed);
+    } else if (sink_->offers_span_space()) {
+      return false;
+    } else {
+      const size_t need = FusedTriangle::room(eq.edges, y0, y1) * fragment_record_bytes(0);
+      if (records_.size() < need) records_.resize(need);
+      FragmentSink* const sink = sink_;
+      if (!tri_.run(eq, y0, y1, records_.data(), res, [sink](const uint8_t* first, size_t n) {
+            if (n) sink->emit_span(FragmentRecords{first, n, 0});
+          }))
+        return false;
+    }
+    stats_.fragments_generated += res.generated;
+    stats_.fragments_depth_pass += res.passed;
+    stats_.fragments_depth_fail += res.generated - res.passed;
+    return true;
+  }
+
   // Stages 7–10 on one span of `eq` (from run() or rows(), which began eq).
   void span(const TriangleEquations& eq, const Span& sp) {
     taps_.template out<TraverseStage>(sp);
@@ -307,6 +349,8 @@ class FragmentChain {
   bool count_only_;
   FusedSpan fused_;
   bool use_fused_;  // NoTaps and FusedSpan::applies: span() takes the fused stages 7–9
+  FusedTriangle tri_;
+  bool use_tri_;  // use_fused_ and no varyings: narrow triangles take FusedTriangle (triangle())
   std::vector<uint8_t> records_;  // the fused span's records, handed to sink_->emit_span
 };
 

@@ -50,6 +50,13 @@ inline void put_fragment_header(uint8_t* rec, uint32_t prim, int32_t x, int32_t 
   const uint32_t h[kFragmentHeaderWords] = {prim, (uint32_t)x, (uint32_t)y, depth};
   std::memcpy(rec, h, sizeof h);
 }
+// Two consecutive 32-bit words of a record as one 64-bit value, `first` at the lower address
+// (FusedTriangle writes a header as two such stores: prim and x, y and depth).
+inline uint64_t fragment_word_pair(uint32_t first, uint32_t second) {
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ || __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__, "byte order");
+  return __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ ? (uint64_t)first | (uint64_t)second << 32
+                                                   : (uint64_t)second | (uint64_t)first << 32;
+}
 // Varying k as its two words: the significand and exp·2 + sign (the one writer of a varying's
 // place in the record; the fused span's word segments assemble the second word themselves).
 inline void put_fragment_var_words(uint8_t* rec, int k, uint32_t sig_word, uint32_t exp_sign_word) {
