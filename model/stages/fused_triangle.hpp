@@ -82,8 +82,34 @@ class FusedTriangle {
   };
   const Counts& counts() const { return counts_; }
 
-  FusedTriangle(const DrawState& st, DepthBufferView buf)
-      : buf_(buf), mask_(depth_func_mask(st.depth_func)), test_(st.depth_test), write_(st.depth_write) {}
+  FusedTriangle(const Config& cfg, const DrawState& st, DepthBufferView buf)
+      : buf_(buf),
+        mask_(depth_func_mask(st.depth_func)),
+        test_(st.depth_test),
+        write_(st.depth_write),
+        rows_(st.viewport_h),
+        sb_(cfg.raster.subpixel_bits) {}
+
+  // A hint, before setup: the depth words of the first rows of `tri`'s pixel bounding box (from
+  // its snapped vertices, within the buffer), read by run() after setup has run. No effect on
+  // any output.
+  void prefetch(const SetupTriangle& tri) const {
+    if (!test_) return;
+    int64_t x0 = tri.v[0].x, x1 = x0, y0 = tri.v[0].y, y1 = y0;
+    for (int k = 1; k < 3; ++k) {
+      x0 = std::min(x0, tri.v[k].x), x1 = std::max(x1, tri.v[k].x);
+      y0 = std::min(y0, tri.v[k].y), y1 = std::max(y1, tri.v[k].y);
+    }
+    x0 = std::max<int64_t>(x0 >> sb_, buf_.x0), x1 = std::min<int64_t>(x1 >> sb_, (int64_t)buf_.x0 + buf_.width - 1);
+    y0 = std::max<int64_t>(y0 >> sb_, buf_.y0), y1 = std::min<int64_t>(y1 >> sb_, (int64_t)buf_.y0 + rows_ - 1);
+    if (x1 < x0 || y1 < y0) return;
+    const int n = (int)std::min<int64_t>(y1 - y0 + 1, kPrefetchRows);
+    const uint32_t* p = buf_.codes + (y0 - buf_.y0) * (int64_t)buf_.width + (x0 - buf_.x0);
+    for (int k = 0; k < n; ++k, p += buf_.width) {
+      __builtin_prefetch(p, 1);
+      __builtin_prefetch(p + (x1 - x0), 1);
+    }
+  }
 
   // The rectangles the kernel takes: narrow ones (traverse's pixel scan).
   static bool narrow(const TriSetup& e) { return (int64_t)e.x1 - e.x0 < kScanMaxWidth; }
@@ -267,6 +293,8 @@ class FusedTriangle {
   DepthBufferView buf_;
   unsigned mask_;
   bool test_, write_;
+  int rows_;  // of the depth buffer (the viewport's height)
+  int sb_;    // raster.subpixel_bits of the snapped vertices
   Counts counts_;
 };
 

@@ -220,7 +220,7 @@ class FragmentChain {
         count_only_(sink == nullptr && !st.depth_test && std::is_same<Taps, NoTaps>::value),
         fused_(cfg, st, DepthBufferView{depth, width, st.viewport_x, st.viewport_y}, sink != nullptr),
         use_fused_(std::is_same<Taps, NoTaps>::value && FusedSpan::applies(cfg)),
-        tri_(st, DepthBufferView{depth, width, st.viewport_x, st.viewport_y}),
+        tri_(cfg, st, DepthBufferView{depth, width, st.viewport_x, st.viewport_y}),
         use_tri_(use_fused_ && fused_.num_varyings() == 0) {
     if (sink) sink->draw_state(st);
   }
@@ -231,6 +231,7 @@ class FragmentChain {
 
   // Contract: as fxr::raster_triangle_to() (model/unit/backend.hpp).
   SetupOutcome run(const SetupTriangle& tri) {
+    if (use_tri_) tri_.prefetch(tri);  // a hint: the depth rows the kernel reads after setup
     taps_.template in<SetupStage>(tri);
     return setup_.step(tri, [&](const TriangleEquations& eq) {
       taps_.template out<SetupStage>(eq);
