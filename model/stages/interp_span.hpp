@@ -22,6 +22,9 @@
 //     (div_sig_recip64_frac_w, model/arith/div.hpp): div_sig_fast64's result;
 //   - the default divider widths and 0, 1, 2 varyings as compile-time constants (other widths and
 //     counts: the same code with run-time values).
+//   - a span of at most kDirectMaxPixels pixels with varyings skips all of the segment machinery:
+//     each passing pixel is divided from the cursor's sums by PixelDivide (model/stages/
+//     pixel_divide.hpp); the sums' binades are synced at the next longer span.
 // Applies where the stage divides with div_sig_fast64 (radix2, W + qb ≤ 63: every default).
 // Proven against the staged path: tests/model/interp_span_test.cpp (random triangles and long
 // grazing spans under every depth function, both stepper widths, binade exits, sign changes,
@@ -97,6 +100,15 @@ inline Span span_fields(const Span& sp) {
   return s;
 }
 
+// A 128-bit value read as two 64-bit words (volatile: two loads of their own width, never merged
+// into one 16-byte load; as span_fields).
+inline u128 u128_words(const u128& v) {
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the low word first");
+  const volatile uint64_t* w = reinterpret_cast<const volatile uint64_t*>(&v);
+  const uint64_t lo = w[0], hi = w[1];
+  return ((u128)hi << 64) | lo;
+}
+
 class FusedSpan {
  public:
   // What the fast path met (the tests check that every case was reached).
@@ -117,6 +129,7 @@ class FusedSpan {
     uint64_t rearmed_moves = 0;   // sums that left their binade or sign between two span starts
     uint64_t rearmed_sign_moves = 0;  // of them with the other sign
     uint64_t sums_fixed = 0;      // sums whose sign and binade hold over a whole triangle
+    uint64_t spans_direct = 0;    // short spans divided pixel by pixel (PixelDivide, no segments)
   };
   const Counts& counts() const { return counts_; }
 
@@ -139,6 +152,8 @@ class FusedSpan {
   int num_varyings() const { return nv_; }
   // false: every segment takes the u128 normalisations (the tests run both and compare).
   void set_high_words(bool on) { high_words_ = on; }
+  // false: short spans take the segment loop too (the tests run both and compare).
+  void set_direct(bool on) { direct_ = on; }
 
   // True when every exponent this triangle's fragments can have fits the compact record
   // (divide_exponents_fit, model/stages/pixel_divide.hpp); a triangle outside this goes through
@@ -152,6 +167,7 @@ class FusedSpan {
   // must call it per triangle. FragmentChain::run / rows call it per triangle for the depth
   // prefetch below. Cheap: the cursor is set up at the first span.
   void begin(const TriangleEquations& t) {
+    pd_.begin(t);
     tri_ = &t;
     serial_ = t.serial;
     started_ = false;
@@ -227,8 +243,13 @@ class FusedSpan {
         den_.fixed = false;
         for (int m = 0; m < nv_; ++m) num_[m].fixed = false;
       }
-      den_.move(t.interp.den, sel, ddx, ddy, val_[0], counts_);
-      for (int m = 0; m < nv_; ++m) num_[m].move(t.interp.num[m], sel, ddx, ddy, val_[1 + m], counts_);
+      if (direct_span(sp)) {  // only the cursor: the sums' binades are synced at the next long span
+        den_.advance(t.interp.den, sel, ddx, ddy, val_[0]);
+        for (int m = 0; m < nv_; ++m) num_[m].advance(t.interp.num[m], sel, ddx, ddy, val_[1 + m]);
+      } else {
+        den_.move(t.interp.den, sel, ddx, ddy, val_[0], counts_);
+        for (int m = 0; m < nv_; ++m) num_[m].move(t.interp.num[m], sel, ddx, ddy, val_[1 + m], counts_);
+      }
     }
     if (z_cursor_) {
       const int moved = inside ? zcur_.move(t.depth, sp.x0, sp.y) : 0;
@@ -298,6 +319,14 @@ class FusedSpan {
   template <class Z, class W>
   uint64_t run_nv(const TriangleEquations& t, const Span& sp, const Z& z, const W& wd, uint8_t* out) {
     if (!out) return loop<0, false>(t, sp, z, wd, out);
+    if (direct_span(sp)) {
+      ++counts_.spans_direct;
+      switch (nv_) {
+        case 1: return loop_direct<1>(t, sp, z, wd, out);
+        case 2: return loop_direct<2>(t, sp, z, wd, out);
+        default: return loop_direct<-1>(t, sp, z, wd, out);
+      }
+    }
     switch (nv_) {
       case 0: return loop<0, true>(t, sp, z, wd, out);
       case 1: return loop<1, true>(t, sp, z, wd, out);
@@ -355,8 +384,16 @@ class FusedSpan {
     // Δy·dy + Δx·dx (row[sel] for the common moves; mod 2^128: the true value fits i128, so the
     // sum is exact). The binade and normaliser are kept when the value stayed in them with its
     // sign (set; no test when fixed), else re-armed.
+    // (advance: the value alone, for a span that does not read the binade; sync: the binade and
+    // normaliser of the value v, from any earlier state.)
     void move(const Plane& p, int sel, int64_t ddx, int64_t ddy, u128& v, Counts& k) {
+      advance(p, sel, ddx, ddy, v);
+      sync(v, k);
+    }
+    void advance(const Plane& p, int sel, int64_t ddx, int64_t ddy, u128& v) const {
       v += sel >= 0 ? row[sel] : (u128)p.dy * (u128)ddy + (u128)p.dx * (u128)ddx;
+    }
+    void sync(u128 v, Counts& k) {
       if (fixed) {
         mag = neg ? (u128)0 - v : v;
         return;
@@ -431,6 +468,12 @@ class FusedSpan {
   // loop").
   static constexpr int64_t kAlignMinPixels = 4;
 
+  // The depth words of span sp (nullptr without a depth test).
+  uint32_t* span_codes(const Span& sp) const {
+    return test_ ? buf_.codes + ((size_t)(sp.y - buf_.y0) * (size_t)buf_.width + (size_t)((int64_t)sp.x0 - buf_.x0))
+                 : nullptr;
+  }
+
   template <int NV, bool kOut, class Z, class W>
   uint64_t loop(const TriangleEquations& t, const Span& sp, const Z& z_start, const W& wd, uint8_t* out) {
     const int nv = kOut ? (NV >= 0 ? NV : nv_) : 0;
@@ -439,9 +482,7 @@ class FusedSpan {
     // pointer, which may alias any member or the triangle, so members would be stored and
     // reloaded at every pixel.
     constexpr int kN = NV > 0 ? NV : NV == 0 ? 1 : kMaxVaryings;
-    uint32_t* const codes = test_ ? buf_.codes + ((size_t)(sp.y - buf_.y0) * (size_t)buf_.width +
-                                                  (size_t)((int64_t)sp.x0 - buf_.x0))
-                                  : nullptr;
+    uint32_t* const codes = span_codes(sp);
     const unsigned mask = mask_;
     const bool write = write_;
     const uint32_t prim = t.prim;
@@ -591,14 +632,61 @@ class FusedSpan {
     return pass_count;
   }
 
+  // A span of at most kDirectMaxPixels pixels with varyings: each passing pixel divided directly
+  // from the cursor's sums (PixelDivide, model/stages/pixel_divide.hpp), no segment, binade or
+  // run_length (docs/speed.md "Session 13: the divider of one pixel").
+  static constexpr int64_t kDirectMaxPixels = 4;
+  bool direct_span(const Span& sp) const {
+    return direct_ && nv_ > 0 && (int64_t)sp.x1 - sp.x0 < kDirectMaxPixels;
+  }
+  template <int NV, class Z, class W>
+  uint64_t loop_direct(const TriangleEquations& t, const Span& sp, const Z& z_start, const W& wd, uint8_t* out) {
+    const int nv = NV >= 0 ? NV : nv_;
+    const size_t stride = fragment_record_bytes(nv);
+    constexpr int kN = NV > 0 ? NV : kMaxVaryings;
+    // Locals only (the records are written through a byte pointer that may alias any member).
+    const PixelDivide pd = pd_;
+    uint32_t* const codes = span_codes(sp);
+    const unsigned mask = mask_;
+    const bool write = write_;
+    const uint32_t prim = t.prim;
+    const int32_t y = sp.y;
+    const int64_t x0 = sp.x0, x1 = sp.x1;
+    // The cursor's sums were just written (run_begun) and the planes' steps by setup, each as two
+    // 64-bit stores: read as two words, not as one 16-byte load that waits for both stores to
+    // retire (perf: 23 % of this loop's samples on that load).
+    u128 s[1 + kN], dx[1 + kN];
+    s[0] = u128_words(val_[0]), dx[0] = u128_words((const u128&)t.interp.den.dx);
+    for (int m = 0; m < nv; ++m)
+      s[1 + m] = u128_words(val_[1 + m]), dx[1 + m] = u128_words((const u128&)t.interp.num[m].dx);
+    Z z = z_start;
+    uint8_t* rec = out;
+    uint64_t pass_count = 0;
+    for (int64_t i = x0; i <= x1; ++i) {
+      const uint32_t code = z.code();
+      const bool pass = depth_pass(codes, i - x0, code, mask, write);
+      pass_count += pass ? 1 : 0;
+      if (pass) {
+        put_fragment_header(rec, prim, (int32_t)i, y, code);
+        pd.write_t<NV>(rec, s, wd);
+        rec += stride;
+      }
+      z.step_x();
+      for (int k = 0; k <= nv; ++k) s[k] += dx[k];
+    }
+    return pass_count;
+  }
+
   DivConfig dc_;
   int nv_;
+  PixelDivide pd_{dc_, nv_};
   DepthBufferView buf_;
   unsigned mask_;
   bool test_, write_;
   DivWidths widths_;
   bool default_widths_;
   bool high_words_ = true;  // the 64-bit-word segments (the tests turn them off to compare)
+  bool direct_ = true;      // short spans through loop_direct (the tests turn it off to compare)
   Sum den_;
   Sum num_[kMaxVaryings];
   // The span-start cursor of the current triangle (begin / run).

@@ -94,20 +94,26 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
                           const std::string& what, bool scramble = false, bool call_begin = true) {
   const size_t words = (size_t)(st.viewport_w) * (size_t)st.viewport_h;
   std::vector<uint32_t> buf_staged(words, (1u << cfg.raster.depth_bits()) - 1), buf_fused = buf_staged,
-                                                                                buf_u128 = buf_staged;
+                                                                                buf_u128 = buf_staged,
+                                                                                buf_direct = buf_staged;
   const DepthBufferView vs{buf_staged.data(), st.viewport_w, st.viewport_x, st.viewport_y};
   const DepthBufferView vf{buf_fused.data(), st.viewport_w, st.viewport_x, st.viewport_y};
   const DepthBufferView vu{buf_u128.data(), st.viewport_w, st.viewport_x, st.viewport_y};
+  const DepthBufferView vd{buf_direct.data(), st.viewport_w, st.viewport_x, st.viewport_y};
   SetupStage setup(cfg, st, true);
   TraverseStage traverse(cfg, st);
   InterpStage interp(cfg, st, true);
   DepthStage depth(cfg, st, vs);
   DivideStage divide(cfg, st, true);
   FusedSpan fused(cfg, st, vf, true);
+  fused.set_direct(false);  // every span through the segments (the counts below are theirs)
   // The same with every segment's normalisations in u128 (no 64-bit-word segments): both loops
   // against the staged path.
   FusedSpan fused_u128(cfg, st, vu, true);
   fused_u128.set_high_words(false);
+  fused_u128.set_direct(false);
+  // The default: spans of ≤ kDirectMaxPixels pixels divided pixel by pixel (PixelDivide).
+  FusedSpan fused_direct(cfg, st, vd, true);
   RasterStats gs;
   std::vector<SetupTriangle> pieces;
   // Both buffers first hold the nearest codes of the odd-numbered triangles (a staged "less"
@@ -130,6 +136,7 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
     }
     buf_fused = buf_staged;
     buf_u128 = buf_staged;
+    buf_direct = buf_staged;
   }
   uint64_t frags = 0, bad = 0, fails = 0;
   std::mt19937_64 rng(tris.size());
@@ -141,6 +148,7 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
         if (call_begin) {  // setup rewrites one record per triangle
           fused.begin(eq);
           fused_u128.begin(eq);
+          fused_direct.begin(eq);
         }
         auto check = [&](const Span& sp) {
           std::vector<Fragment> want, got;
@@ -151,10 +159,10 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
           });
           frags += want.size();
           fails += (uint64_t)(sp.x1 - sp.x0 + 1) - pass_staged;
-          for (FusedSpan* fs : {&fused, &fused_u128}) {
+          for (FusedSpan* fs : {&fused, &fused_u128, &fused_direct}) {
             got.clear();
             const uint64_t pass_fused = fs->run(eq, sp, [&](const Fragment& f) { got.push_back(f); });
-            const char* path = fs == &fused ? "" : " (u128 segments)";
+            const char* path = fs == &fused ? "" : fs == &fused_u128 ? " (u128 segments)" : " (direct short spans)";
             if (pass_fused != pass_staged || want.size() != got.size()) {
               if (++bad <= 3) ADD_FAILURE() << what << path << ": span y " << sp.y << " x " << sp.x0 << ".." << sp.x1 << " passes " << pass_staged << " vs " << pass_fused;
               continue;
@@ -187,6 +195,7 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
   EXPECT_EQ(bad, 0u) << what;
   EXPECT_TRUE(buf_staged == buf_fused) << what << ": depth buffers differ";
   EXPECT_TRUE(buf_staged == buf_u128) << what << ": depth buffers differ (u128 segments)";
+  EXPECT_TRUE(buf_staged == buf_direct) << what << ": depth buffers differ (direct short spans)";
   EXPECT_EQ(fused_u128.counts().segments_high, 0u) << what;
   if (st.depth_func != DepthFunc::Never) {
     EXPECT_GT(frags, 0u) << what << ": nothing drawn (the test would be vacuous)";
@@ -194,7 +203,10 @@ FusedSpan::Counts compare(const Config& cfg, const DrawState& st, const std::vec
   if (st.depth_test && st.depth_func != DepthFunc::Never && st.depth_func != DepthFunc::Always) {
     EXPECT_GT(fails, 0u) << what << ": nothing failed the depth test";
   }
-  return fused.counts();
+  FusedSpan::Counts c = fused.counts();
+  c.spans_direct = fused_direct.counts().spans_direct;
+  EXPECT_EQ(fused.counts().spans_direct + fused_u128.counts().spans_direct, 0u) << what;
+  return c;
 }
 
 Config widths_config(int nb, int db, int qb) {
@@ -212,6 +224,7 @@ void add(FusedSpan::Counts& a, const FusedSpan::Counts& b) {
   a.cursor_starts += b.cursor_starts, a.cursor_moves += b.cursor_moves, a.spans_z64 += b.spans_z64;
   a.z_moves_divided += b.z_moves_divided, a.z_cursor_lost += b.z_cursor_lost, a.rearmed_moves += b.rearmed_moves;
   a.sums_fixed += b.sums_fixed, a.rearmed_sign_moves += b.rearmed_sign_moves;
+  a.spans_direct += b.spans_direct;
 }
 
 // A tap (any tap type but NoTaps makes FragmentChain take the staged stages).
@@ -275,6 +288,8 @@ TEST(FusedSpan, RandomTrianglesUnderEveryDepthStateEqualTheStagedPath) {
   // The word segments also where D's significand reaches into the low word (the sums aligned,
   // docs/speed.md "Session 12: the pixel loop").
   EXPECT_GT(total.segments_high_low, 10u);
+  // Short spans with varyings divided pixel by pixel (the default path, compared as well).
+  EXPECT_GT(total.spans_direct, 1000u);
 }
 
 TEST(FusedSpan, GrazingPlanesAcrossBinadesAndZeroEqualTheStagedPath) {
@@ -685,6 +700,7 @@ TEST(FusedSpan, SpansInAnyOrderWithinATriangleEqualTheStagedPath) {
   EXPECT_GT(total.z_cursor_lost, 10u);
   EXPECT_GT(total.rearmed_moves, 100u);
   EXPECT_GT(total.rearmed_sign_moves, 10u);
+  EXPECT_GT(total.spans_direct, 1000u);  // between them: the sums synced lazily at a long span
   EXPECT_GT(total.sums_fixed, 100u);
   EXPECT_GT(total.segments, total.spans);
   EXPECT_GT(total.sign_changes, 0u);
