@@ -190,7 +190,11 @@ inline KeptVertexTable& kept_vertex_table() {
 // changes or the epochs wrap. Used by one draw at a time.
 class SharedVertexTable {
  public:
-  void begin(int num_varyings) {
+  // rw_unread: no reader of the draw's triangles reads SetupVertex::rw (VertexCache::set_rw_unread's
+  // condition); every cache sharing the table in this draw then leaves rw = 0 with separate
+  // attribute positions, as one that does not share (the flag is the table's, so the caches that
+  // write and read its slots agree; a slot of an earlier draw reads as empty: the epoch).
+  void begin(int num_varyings, bool rw_unread = false) {
     const size_t words = kVertexCacheBytes / kVertexTableWordBytes;
     if (words_.size() != words || nv_ != num_varyings || epoch_ == kVertexTableMaxEpoch) {
       words_.assign_zero(words);
@@ -198,6 +202,7 @@ class SharedVertexTable {
       nv_ = num_varyings;
     }
     ++epoch_;
+    rw_unread_ = rw_unread;
   }
 
  private:
@@ -205,6 +210,7 @@ class SharedVertexTable {
   VertexTableWords words_;
   int nv_ = -1;
   uint32_t epoch_ = 0;
+  bool rw_unread_ = false;
 };
 
 class VertexCache {
@@ -276,6 +282,7 @@ class VertexCache {
     kept_.release();
     table_ = table.words_.data();
     epoch_ = table.epoch_;
+    rw_unread_ = table.rw_unread_;
     shared_ = true;
   }
 
@@ -283,9 +290,12 @@ class VertexCache {
   // setup builds no 1/w plane: no sink or no varyings). With separate attribute positions the
   // triangles then carry rw = 0 where stages 1–4 emit the exact 1/w_c (a division per vertex
   // computed: model only what a scene needs, docs/speed.md "Session 12: per triangle"); every
-  // other field and every answer are unchanged. Before the first triangle; a cache that shares
-  // a table (share()) computes rw whatever this says (the other caches of the table may read it).
-  void set_rw_unread(bool unread) { rw_unread_ = unread; }
+  // other field and every answer are unchanged. Before the first triangle. A cache that shares a
+  // table (share()) takes the table's flag instead (SharedVertexTable::begin: the caches that
+  // write and read its slots agree) and ignores this.
+  void set_rw_unread(bool unread) {
+    if (!shared_) rw_unread_ = unread;
+  }
 
   uint64_t hits() const { return hits_; }
   uint64_t misses() const { return misses_; }
@@ -525,7 +535,7 @@ class VertexCache {
       }
     }
     ++misses_;
-    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_, recip_unit());
+    const bool ok = accepted_vertex(cfg_, st_, gb_, cv, out, scratch_, recip_unit(), rw_unread_);
     uint64_t expect = w0, busy;
     state_seq[1] = seq + 1;  // odd: being written
     std::memcpy(&busy, state_seq, sizeof(uint64_t));
@@ -575,7 +585,7 @@ class VertexCache {
   Pending ring_[kPrefetchRing];
   unsigned ring_next_ = 0;
   ClipVtx scratch_;  // accepted_vertex's working vertex
-  bool rw_unread_ = false;  // set_rw_unread (a table of this cache's own only: vertex())
+  bool rw_unread_ = false;  // set_rw_unread, or a shared table's (SharedVertexTable::begin)
   // The reciprocal unit of the draw, made at the first vertex computed (a cache is set up per
   // primitive by fxr::geometry(): the unit's seed table is not built for nothing).
   std::unique_ptr<RecipUnit> recip_;

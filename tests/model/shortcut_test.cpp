@@ -550,7 +550,8 @@ TEST(Shortcut, NoVaryingsMeansNoPlaneNoSumAndNoDivide) {
 // reads no rw answers the same triangles as one that computes it, each equal to the full
 // chain's in every field but rw, which is 0 with separate attribute positions (the exact 1/w_c,
 // never 0, not computed) and the full chain's without them (rw = r, kept); the same hits and
-// misses. Meshes with hard vertices, 0 and 2 varyings, both position paths, small tables.
+// misses. Meshes with hard vertices, 0 and 2 varyings, both position paths, small tables; the
+// same for caches on shared tables (the threads'), whose flag is the table's (SharedVertexTable::begin).
 TEST(Shortcut, VertexCacheWithRwUnreadDiffersFromTheFullChainOnlyInRw) {
   std::mt19937_64 rng(0x5c0c);
   for (const bool attr : {true, false}) {
@@ -563,28 +564,46 @@ TEST(Shortcut, VertexCacheWithRwUnreadDiffersFromTheFullChainOnlyInRw) {
       const std::vector<ClipTriangle> tris = grid_mesh(rng, 60, st.num_varyings, trial % 2 ? 1.05 : 0.7);
       VertexCache unread(cfg, st, 8, 0), plain(cfg, st, 8, 0);
       unread.set_rw_unread(true);
+      // The same on shared tables (the threads'): the flag is the table's (begin), and a cache's
+      // own set_rw_unread is ignored once it shares.
+      SharedVertexTable unread_table, plain_table;
+      unread_table.begin(st.num_varyings, true);
+      plain_table.begin(st.num_varyings, false);
+      VertexCache shared_unread(cfg, st, 8, 0), shared_plain(cfg, st, 8, 0);
+      shared_unread.share(unread_table);
+      shared_plain.set_rw_unread(true);  // before share(): the table's false wins
+      shared_plain.share(plain_table);
+      shared_unread.set_rw_unread(false);  // after share(): ignored
       FullPathTap ft;
       GeometryChain<FullPathTap> full(cfg, st, ft);
       for (size_t p = 0; p < tris.size(); ++p) {
-        SetupTriangle a, b;
+        SetupTriangle a, b, sa, sb;
         const bool ra = unread.triangle(tris[p], (uint32_t)p, a), rb = plain.triangle(tris[p], (uint32_t)p, b);
         ASSERT_EQ(ra, rb) << "primitive " << p;
+        ASSERT_EQ(shared_unread.triangle(tris[p], (uint32_t)p, sa), ra) << "primitive " << p;
+        ASSERT_EQ(shared_plain.triangle(tris[p], (uint32_t)p, sb), ra) << "primitive " << p;
         if (!ra) continue;
         ++answered;
         SetupTriangle want;
         ASSERT_TRUE(full_chain_setup(full, tris[p], (uint32_t)p, want));
         ASSERT_TRUE(same_setup(b, want)) << "primitive " << p;
+        ASSERT_TRUE(same_setup(sb, want)) << "primitive " << p;
         for (int k = 0; k < 3; ++k) {
           const FxFloat& rw = want.v[k].rw;
           if (attr) {
             ASSERT_TRUE(rw.sig != 0 && same_fx(a.v[k].rw, FxFloat{})) << "primitive " << p << " vertex " << k;
+            ASSERT_TRUE(same_fx(sa.v[k].rw, FxFloat{})) << "primitive " << p << " vertex " << k;
             a.v[k].rw = rw;
+            sa.v[k].rw = rw;
           }
         }
         ASSERT_TRUE(same_setup(a, want)) << "primitive " << p;
+        ASSERT_TRUE(same_setup(sa, want)) << "primitive " << p;
       }
       EXPECT_EQ(unread.hits(), plain.hits());
       EXPECT_EQ(unread.misses(), plain.misses());
+      EXPECT_EQ(shared_unread.hits(), plain.hits());
+      EXPECT_EQ(shared_plain.misses(), plain.misses());
       EXPECT_GT(unread.hits(), 1000u);
       EXPECT_GT(unread.misses(), 1000u);
     }
