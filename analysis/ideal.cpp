@@ -126,12 +126,10 @@ struct ImageSink final : FragmentSink {
   // A span's records (the fused chain, model/unit/backend.hpp): read in place, no Fragment.
   void emit_span(const FragmentRecords& b) override {
     if (b.count == 0) return;
-    const int y = b.y(0);
-    if (y < 0 || y >= m.height) return;
-    for (size_t i = 0; i < b.count; ++i) {
+    for (size_t i = 0; i < b.count; ++i) {  // one row or several (FragmentSink::emit_span)
       const uint8_t* r = b.record(i);
-      const int32_t x = (int32_t)fragment_word(r, 1);
-      if (x < 0 || x >= m.width) continue;
+      const int32_t x = (int32_t)fragment_word(r, 1), y = b.y(i);
+      if (x < 0 || x >= m.width || y < 0 || y >= m.height) continue;
       const size_t o = m.index(x, y);
       m.prim[o] = (int32_t)fragment_word(r, 0);
       m.depth[o] = fragment_word(r, 3);

@@ -215,9 +215,12 @@ struct ImageSink : FragmentSink {
     const size_t stride = fragment_record_bytes(n), bytes = (size_t)n * kFragmentVaryingBytes;
     const uint8_t* r = b.data + kFragmentHeaderBytes;
     const size_t count = b.count;
-    const int y = b.y(0);
-    uint8_t* const row = pixel(0, y);
+    int y = b.y(0);
+    uint8_t* row = pixel(0, y);
     for (size_t i = 0; i < count; ++i, r += stride) {
+      // A block may hold several rows (the threaded unit's output merge: FragmentSink::emit_span).
+      const int yi = b.y(i);
+      if (yi != y) y = yi, row = pixel(0, y);
       uint8_t* const px = row + (size_t)fragment_word(r - kFragmentHeaderBytes, 1) * bytes;
       if (NV > 0) std::memcpy(px, r, (size_t)NV * kFragmentVaryingBytes);  // one fixed-size copy
       else

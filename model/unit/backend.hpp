@@ -36,10 +36,13 @@ class FragmentSink {
  public:
   virtual ~FragmentSink() = default;
   virtual void emit(const Fragment& f) = 0;
-  // The passing fragments of one span (one row, x increasing, not necessarily adjacent) as
-  // compact records (model/unit/fragment_store.hpp) of the chain's num_varyings: the same
-  // fragments, in the same order, as that many emit calls — which is what the default does. A
-  // sink that can take them in bulk overrides it (docs/speed.md "Session 8: the span path").
+  // A block of passing fragments, consecutive in the unit's order, as compact records
+  // (model/unit/fragment_store.hpp) of the chain's num_varyings: the same fragments, in the same
+  // order, as that many emit calls — which is what the default does. A sink that can take them
+  // in bulk overrides it (docs/speed.md "Session 8: the span path"). The sequential chain hands
+  // one row of one triangle per call (x increasing, not necessarily adjacent); the threaded
+  // unit's output merge hands longer blocks that may cover several rows and triangles
+  // (model/unit/threads.cpp): an override reads each record's own y.
   virtual void emit_span(const FragmentRecords& b) {
     Fragment f;
     for (size_t i = 0; i < b.count; ++i) {
