@@ -499,7 +499,9 @@ class FrameRun {
     // others computed: docs/speed.md "Session 8: threads"), for draws that fill one.
     vertices_ = nullptr;
     if (tris_.size() > kVertexCacheMinPrims) {
-      pool.vertices.begin(st_.num_varyings);
+      // Setup reads a vertex's 1/w_c only for the 1/w plane, built with records and varyings
+      // (UnitChain's rule): otherwise the shared table need not compute it.
+      pool.vertices.begin(st_.num_varyings, /*rw_unread=*/!records_ || st_.num_varyings <= 0);
       vertices_ = &pool.vertices;
     }
     ctl_.fill_depth = reuse_depth_;
