@@ -462,7 +462,7 @@ class FusedSpan {
 
   // The msb a sum is aligned to in the 64-bit-word segments: the high word's bit 62 (rne_high_word
   // needs msb ≤ 2·64 − 2); sums up to 2^127 (msb ≤ kAlignMsb, NormalizeAtMsb's range).
-  static constexpr int kAlignMsb = 126;
+  static constexpr int kAlignMsb = kPixelAlignMsb;  // model/stages/pixel_divide.hpp
   // Shorter segments keep the u128 loop: the alignment's shifts and the magnitudes' write-back
   // cost more than they save on the bunny's 2-pixel spans (docs/speed.md "Session 12: the pixel
   // loop").

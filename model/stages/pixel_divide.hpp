@@ -85,8 +85,10 @@ inline constexpr int kPixelAlignMsb = 126;
   const int c = hi != 0 ? __builtin_clzll(hi) : 64 + __builtin_clzll(lo | 1);
   msb = 127 - c;
   const u128 a = x << (c - (127 - kPixelAlignMsb));  // msb at kPixelAlignMsb
-  const int s = 63 - bits;                           // the significand's shift in the high word
-  return rne_high_word<uint64_t>((uint64_t)(a >> 64), (uint64_t)a, s, (uint64_t{1} << (s - 1)) - 1);
+  // NormalizeAtMsb's rounding of a value whose msb is kPixelAlignMsb, in the high word (constants
+  // where `bits` is one).
+  const NormalizeAtMsb al(bits, kPixelAlignMsb);
+  return rne_high_word<uint64_t>((uint64_t)(a >> 64), (uint64_t)a, al.high_shift(), al.high_bias());
 }
 
 class PixelDivide {
